@@ -1,0 +1,37 @@
+#pragma once
+// Parsing of `gplan SUBCOMMAND ...` arguments: positionals, --flag and --option VALUE.
+
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace gplan {
+
+// Bad command-line usage; main prints it with the subcommand's usage and exits 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class CommandLine {
+ public:
+  // Parses argv[first..argc); `options` take a value, `flags` do not.
+  CommandLine(int argc, char** argv, int first, const std::set<std::string>& options,
+              const std::set<std::string>& flags);
+
+  const std::vector<std::string>& positionals() const { return positionals_; }
+  bool flag(const std::string& name) const { return flags_.count(name) > 0; }
+  bool has(const std::string& name) const { return values_.count(name) > 0; }
+  std::string text(const std::string& name, const std::string& fallback) const;
+  // Non-negative integers, rejected with a UsageError naming the option otherwise.
+  long long count(const std::string& name, long long fallback) const;
+
+ private:
+  std::vector<std::string> positionals_;
+  std::map<std::string, std::string> values_;
+  std::set<std::string> flags_;
+};
+
+}  // namespace gplan

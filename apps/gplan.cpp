@@ -1,0 +1,59 @@
+// gplan: the command line on YAML scene files.
+
+#include <iostream>
+#include <string>
+
+#include "check_command.h"
+#include "command_line.h"
+#include "gplanner/collision_gpu/gpu_device.h"
+#include "gplanner/planner/input_error.h"
+
+namespace {
+
+const char* kUsage =
+    "usage: gplan COMMAND ...\n"
+    "  gplan check SCENE [--n N] [--seed S] [--backend fcl] [--threads T]\n"
+    "                    [--out FILE] [--json]\n"
+    "      sample N configurations (default 10000, seed 1) within the scene's bounds and\n"
+    "      joint limits and check them; --out writes each configuration's values and its\n"
+    "      verdict (1 collision, 0 free), one per line; --json ends with a JSON summary\n"
+    "  gplan info\n"
+    "      how gplanner was built and which GPU it can use\n";
+
+int run_info() {
+  const gplanner::GpuDevice device = gplanner::query_gpu_device();
+  std::cout << "CUDA        " << (device.compiled_with_cuda ? "compiled in" : "not compiled in")
+            << "\n";
+  if (device.available) {
+    std::cout << "GPU         " << device.name << " (sm_" << device.compute_major
+              << device.compute_minor << ", " << device.multiprocessors << " SMs, "
+              << device.memory_bytes / (1024 * 1024) << " MiB)\n";
+  } else {
+    std::cout << "GPU         none: " << device.reason << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
+    std::cout << kUsage;
+    return argc < 2 ? 2 : 0;
+  }
+  const std::string command = argv[1];
+  try {
+    if (command == "check") return gplan::run_check(argc, argv);
+    if (command == "info") return run_info();
+    throw gplan::UsageError("unknown command '" + command + "'");
+  } catch (const gplan::UsageError& e) {
+    std::cerr << "gplan: " << e.what() << "\n" << kUsage;
+    return 2;
+  } catch (const gplanner::InputError& e) {
+    std::cerr << "gplan: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "gplan: error: " << e.what() << "\n";
+    return 1;
+  }
+}

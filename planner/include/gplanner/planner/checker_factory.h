@@ -1,0 +1,25 @@
+#pragma once
+// Backends by name, for the command line and the OMPL adapters.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gplanner/planner/collision_checker.h"
+
+namespace gplanner {
+
+struct CheckerOptions {
+  int threads = 0;  // host threads for CPU backends; 0: all cores
+};
+
+// Names accepted by make_collision_checker.
+std::vector<std::string> collision_backends();
+
+// The checker for `backend`; throws std::invalid_argument naming the known backends
+// when the name is unknown. `scene` must outlive the checker.
+std::unique_ptr<CollisionChecker> make_collision_checker(const Scene& scene,
+                                                         const std::string& backend,
+                                                         const CheckerOptions& options = {});
+
+}  // namespace gplanner

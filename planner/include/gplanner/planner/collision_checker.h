@@ -1,0 +1,39 @@
+#pragma once
+// The batch call every backend answers: configurations in, one verdict each out.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace gplanner {
+
+struct Scene;
+
+class CollisionChecker {
+ public:
+  virtual ~CollisionChecker() = default;
+
+  // The backend that actually runs ("fcl", "cpu", "gpu").
+  virtual std::string backend() const = 0;
+
+  // configurations: shape [n, width], row-major; verdicts: shape [n], 1 when the
+  // configuration collides (with the environment or itself), 0 when it is free.
+  virtual void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) = 0;
+
+  bool in_collision(const float* configuration) {
+    std::uint8_t verdict = 0;
+    check(configuration, 1, &verdict);
+    return verdict != 0;
+  }
+};
+
+// Throws InputError naming the scene file, line and key when start or goal collides.
+void check_start_and_goal(const Scene& scene, CollisionChecker* checker);
+
+// The first fraction t in (0, 1) of the way from start to goal (sampled every
+// `step` of the way, all samples in one batch) at which the straight line collides;
+// a negative value when every sample is free.
+double first_collision_on_straight_line(const Scene& scene, CollisionChecker* checker,
+                                        double step = 0.001);
+
+}  // namespace gplanner

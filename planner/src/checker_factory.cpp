@@ -1,0 +1,20 @@
+#include "gplanner/planner/checker_factory.h"
+
+#include <stdexcept>
+
+#include "gplanner/planner/fcl_checker.h"
+
+namespace gplanner {
+
+std::vector<std::string> collision_backends() { return {"fcl"}; }
+
+std::unique_ptr<CollisionChecker> make_collision_checker(const Scene& scene,
+                                                         const std::string& backend,
+                                                         const CheckerOptions& options) {
+  if (backend == "fcl") return std::make_unique<FclChecker>(scene, options.threads);
+  std::string known;
+  for (const std::string& name : collision_backends()) known += (known.empty() ? "" : ", ") + name;
+  throw std::invalid_argument("'" + backend + "' is not a collision backend; use one of: " + known);
+}
+
+}  // namespace gplanner

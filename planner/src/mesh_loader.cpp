@@ -90,7 +90,13 @@ TriangleMesh load_mesh(const std::string& path, const Eigen::Vector3d& scale,
   const aiScene* scene = importer.ReadFile(
       path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (scene == nullptr || scene->mRootNode == nullptr) {
-    throw InputError(referenced_from, what + " cannot be read: " + importer.GetErrorString());
+    const std::string error = importer.GetErrorString();
+    // SortByPType removes points and lines; a file holding nothing else is left empty.
+    if (error.find("No meshes remaining") != std::string::npos) {
+      throw InputError(referenced_from, what + " has no triangles (only points or lines); give a "
+                                               "mesh with at least one face");
+    }
+    throw InputError(referenced_from, what + " cannot be read: " + error);
   }
   TriangleMesh mesh;
   collect_triangles(*scene, *scene->mRootNode, Eigen::Matrix4d::Identity(), &mesh);

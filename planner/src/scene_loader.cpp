@@ -39,6 +39,9 @@ class YamlReader {
                   const std::set<std::string>& allowed) const {
     if (!node.IsMap()) fail(node, key, "expected a map of keys, found " + kind(node));
     for (const auto& entry : node) {
+      if (!entry.first.IsScalar()) {
+        fail(entry.first, key, "expected a key name, found " + kind(entry.first));
+      }
       const std::string name = entry.first.as<std::string>();
       if (!allowed.count(name)) {
         std::string list;

@@ -257,7 +257,7 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
   return robot;
 }
 
-void apply_srdf(RobotModel* robot, const std::string& srdf_path,
+int apply_srdf(RobotModel* robot, const std::string& srdf_path,
                 const SourceLocation& referenced_from, std::vector<std::string>* notices) {
   const std::string xml = read_text_file(srdf_path, referenced_from, "SRDF");
   tinyxml2::XMLDocument doc;
@@ -275,6 +275,7 @@ void apply_srdf(RobotModel* robot, const std::string& srdf_path,
       "disable_collisions", "disable_default_collisions", "enable_collisions",
       "link_sphere_approximation"};
   std::set<std::string> skipped;
+  int read = 0;
   std::set<std::pair<int, int>> pairs(robot->disabled_pairs.begin(), robot->disabled_pairs.end());
   for (const tinyxml2::XMLElement* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) {
     const std::string tag = e->Name();
@@ -300,10 +301,12 @@ void apply_srdf(RobotModel* robot, const std::string& srdf_path,
                                     "' does not have; fix the name or use the matching URDF");
       }
     }
+    ++read;
     if (ends[0] != ends[1]) pairs.emplace(std::min(ends[0], ends[1]), std::max(ends[0], ends[1]));
   }
   robot->disabled_pairs.assign(pairs.begin(), pairs.end());
   robot->srdf_file = srdf_path;
+  return read;
 }
 
 }  // namespace gplanner

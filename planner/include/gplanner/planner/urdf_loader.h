@@ -30,8 +30,9 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
 
 // Adds the SRDF's disable_collisions pairs. Elements outside what we use are skipped;
 // elements outside the SRDF core are reported once each in `notices`. A pair naming a
-// link the URDF lacks is an InputError.
-void apply_srdf(RobotModel* robot, const std::string& srdf_path,
+// link the URDF lacks is an InputError. Returns the number of disable_collisions
+// elements read.
+int apply_srdf(RobotModel* robot, const std::string& srdf_path,
                 const SourceLocation& referenced_from, std::vector<std::string>* notices);
 
 }  // namespace gplanner

@@ -1,0 +1,60 @@
+// Every scene in scenes/ is a real planning problem: it loads, start and goal are free,
+// the straight line between them collides, and the narrowest passage is stated.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "gplanner/planner/fcl_checker.h"
+#include "gplanner/planner/scene.h"
+#include "test_support.h"
+
+namespace gplanner {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> shipped_scenes() {
+  std::vector<std::string> files;
+  const fs::path folder = fs::path(testing::project_root()) / "scenes";
+  if (fs::is_directory(folder)) {
+    for (const auto& entry : fs::directory_iterator(folder)) {
+      if (entry.path().extension() == ".yaml") files.push_back(entry.path().filename().string());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+class ShippedScene : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ShippedScene, IsARealPlanningProblem) {
+  const std::string file = testing::project_root() + "/scenes/" + GetParam();
+  const Scene scene = load_scene(file);
+  EXPECT_FALSE(scene.narrowest_passage.empty()) << "state the narrowest passage";
+  EXPECT_GT(scene.robot.triangle_count(), 1000u);
+  EXPECT_GT(scene.obstacle_triangle_count(), 100u);
+  FclChecker checker(scene);
+  EXPECT_NO_THROW(check_start_and_goal(scene, &checker));
+  const double t = first_collision_on_straight_line(scene, &checker);
+  EXPECT_GT(t, 0) << "the straight line from start to goal must collide";
+  std::cout << scene.name << ": " << scene.robot.triangle_count() << " robot triangles, "
+            << scene.obstacle_triangle_count() << " obstacle triangles, " << scene.space.dof()
+            << " DOF; straight line collides at " << 100 * t << "%\n";
+}
+
+TEST(ShippedScenes, DefaultSceneExists) {
+  const std::vector<std::string> scenes = shipped_scenes();
+  EXPECT_NE(std::find(scenes.begin(), scenes.end(), "piano.yaml"), scenes.end());
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::ValuesIn(shipped_scenes()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           std::string name = fs::path(info.param).stem().string();
+                           for (char& c : name) if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(ShippedScene);
+
+}  // namespace
+}  // namespace gplanner

@@ -1,0 +1,61 @@
+#include "test_support.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+namespace gplanner::testing {
+namespace fs = std::filesystem;
+
+std::string project_root() {
+  const char* root = std::getenv("GPLANNER_ROOT");
+  return root && *root ? root : GPLANNER_SOURCE_DIR;
+}
+
+std::string shared_data() {
+  const char* data = std::getenv("GPLANNER_SHARED_DATA");
+  const fs::path folder = data && *data ? fs::path(data)
+                                        : fs::path(project_root()) / ".." / "shared" / "data";
+  return fs::is_directory(folder) ? fs::canonical(folder).string() : std::string();
+}
+
+ScratchFolder::ScratchFolder() {
+  std::random_device entropy;
+  path_ = (fs::temp_directory_path() /
+           ("gplanner-test-" + std::to_string(getpid()) + "-" + std::to_string(entropy())))
+              .string();
+  fs::create_directories(path_);
+}
+
+ScratchFolder::~ScratchFolder() {
+  std::error_code ignored;
+  fs::remove_all(path_, ignored);
+}
+
+std::string ScratchFolder::write(const std::string& name, const std::string& text) const {
+  const fs::path file = fs::path(path_) / name;
+  fs::create_directories(file.parent_path());
+  std::ofstream(file, std::ios::binary) << text;
+  return file.string();
+}
+
+CommandResult run_gplan(const std::string& arguments) {
+  const std::string command = std::string("'") + GPLAN_EXECUTABLE + "' " + arguments + " 2>&1";
+  CommandResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> buffer;
+  std::size_t got = 0;
+  while ((got = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), got);
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+}  // namespace gplanner::testing

@@ -1,0 +1,37 @@
+#pragma once
+// Shared by the tests: where the project and the real robot data are, scratch folders,
+// and running the gplan program.
+
+#include <string>
+
+namespace gplanner::testing {
+
+// The project root: $GPLANNER_ROOT, else the source folder this binary was built from.
+std::string project_root();
+
+// The real robot data: $GPLANNER_SHARED_DATA, else ../shared/data beside the project.
+// Empty when the folder does not exist (tests needing it skip).
+std::string shared_data();
+
+// A fresh, empty folder for one test, removed when the object dies.
+class ScratchFolder {
+ public:
+  ScratchFolder();
+  ~ScratchFolder();
+  const std::string& path() const { return path_; }
+  // Writes `text` to path()/name and returns the full path.
+  std::string write(const std::string& name, const std::string& text) const;
+
+ private:
+  std::string path_;
+};
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+// Runs the gplan program built beside the tests with `arguments` (shell syntax).
+CommandResult run_gplan(const std::string& arguments);
+
+}  // namespace gplanner::testing

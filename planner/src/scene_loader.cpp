@@ -476,16 +476,16 @@ Scene load_scene(const std::string& path) {
     throw InputError({path, e.mark.line + 1, "yaml"}, "malformed YAML: " + e.msg);
   }
   const YamlReader in(path);
-  in.expect_map(root, "", {"name", "description", "narrowest_passage", "robot", "obstacles",
-                           "bounds", "start", "goal", "planner"});
   Scene scene;
   scene.file = path;
-  scene.name = root["name"] ? in.text(root["name"], "name") : fs::path(path).stem().string();
-  if (root["description"]) scene.description = in.text(root["description"], "description");
-  if (root["narrowest_passage"]) {
-    scene.narrowest_passage = in.text(root["narrowest_passage"], "narrowest_passage");
-  }
   try {
+    in.expect_map(root, "", {"name", "description", "narrowest_passage", "robot", "obstacles",
+                             "bounds", "start", "goal", "planner"});
+    scene.name = root["name"] ? in.text(root["name"], "name") : fs::path(path).stem().string();
+    if (root["description"]) scene.description = in.text(root["description"], "description");
+    if (root["narrowest_passage"]) {
+      scene.narrowest_passage = in.text(root["narrowest_passage"], "narrowest_passage");
+    }
     read_robot(in, in.required(root, "", "robot"), &scene);
     read_bounds(in, root["bounds"], &scene.space);
     read_obstacles(in, root["obstacles"], &scene);
@@ -498,7 +498,7 @@ Scene load_scene(const std::string& path) {
     scene.planner = read_planner_settings(in, root["planner"]);
   } catch (const YAML::Exception& e) {
     // A value of the wrong shape where yaml-cpp itself converts (a map key, say).
-    throw InputError({path, e.mark.line + 1, ""}, e.msg);
+    throw InputError({path, e.mark.line + 1, "yaml"}, e.msg + "; use plain text keys and values");
   }
   return scene;
 }

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -69,6 +70,16 @@ int run_check(int argc, char** argv) {
   gplanner::CheckerOptions options;
   options.threads = static_cast<int>(args.count("threads", 0));
 
+  // Refuse an output file that cannot be written before doing the work, not after.
+  const std::string out = args.text("out", "");
+  if (!out.empty()) {
+    const std::filesystem::path folder = std::filesystem::path(out).parent_path();
+    if (std::filesystem::is_directory(out) ||
+        !std::filesystem::is_directory(folder.empty() ? "." : folder)) {
+      throw UsageError("--out " + out + ": not a file in an existing folder");
+    }
+  }
+
   const auto load_start = Clock::now();
   const gplanner::Scene scene = gplanner::load_scene(scene_file);
   for (const std::string& notice : scene.notices) std::cerr << "notice: " << notice << "\n";
@@ -120,7 +131,6 @@ int run_check(int argc, char** argv) {
             << "time        " << std::setprecision(4) << check_s << " s, " << std::setprecision(0)
             << rate << " queries/s\n";
 
-  const std::string out = args.text("out", "");
   if (!out.empty()) {
     gplanner::write_file_atomically(out, [&](std::ostream& stream) {
       stream << std::setprecision(9);

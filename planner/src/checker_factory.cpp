@@ -2,16 +2,18 @@
 
 #include <stdexcept>
 
+#include "gplanner/planner/cpu_checker.h"
 #include "gplanner/planner/fcl_checker.h"
 
 namespace gplanner {
 
-std::vector<std::string> collision_backends() { return {"fcl"}; }
+std::vector<std::string> collision_backends() { return {"fcl", "cpu"}; }
 
 std::unique_ptr<CollisionChecker> make_collision_checker(const Scene& scene,
                                                          const std::string& backend,
                                                          const CheckerOptions& options) {
   if (backend == "fcl") return std::make_unique<FclChecker>(scene, options.threads);
+  if (backend == "cpu") return std::make_unique<CpuChecker>(scene, options.threads);
   std::string known;
   for (const std::string& name : collision_backends()) known += (known.empty() ? "" : ", ") + name;
   throw std::invalid_argument("'" + backend + "' is not a collision backend; use one of: " + known);

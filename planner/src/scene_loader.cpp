@@ -9,6 +9,7 @@
 
 #include "gplanner/planner/mesh_loader.h"
 #include "gplanner/planner/scene.h"
+#include "gplanner/planner/scene_collision_model.h"
 #include "gplanner/planner/urdf_loader.h"
 
 namespace gplanner {
@@ -496,10 +497,16 @@ Scene load_scene(const std::string& path) {
     scene.start_defined = in.at(start, "start");
     scene.goal_defined = in.at(goal, "goal");
     scene.planner = read_planner_settings(in, root["planner"]);
+    const double delta_fraction = scene.planner.number("delta_fraction");
+    if (!(delta_fraction > 0 && delta_fraction <= 1e-5)) {
+      in.fail(root["planner"]["delta_fraction"], "planner.delta_fraction",
+              "must lie in (0, 1e-5]: the tolerance band may not exceed 1e-5 of the scene's size");
+    }
   } catch (const YAML::Exception& e) {
     // A value of the wrong shape where yaml-cpp itself converts (a map key, say).
     throw InputError({path, e.mark.line + 1, "yaml"}, e.msg + "; use plain text keys and values");
   }
+  scene.dropped_obstacle_triangles = drop_unreachable_obstacle_triangles(&scene);
   return scene;
 }
 

@@ -27,6 +27,8 @@ struct Scene {
   RobotModel robot;
   ConfigurationSpace space;
   std::vector<Obstacle> obstacles;
+  // Obstacle triangles dropped at load because the robot cannot reach them.
+  std::size_t dropped_obstacle_triangles = 0;
   std::vector<float> start;  // shape: [space.width()]
   std::vector<float> goal;   // shape: [space.width()]
   SourceLocation start_defined;
@@ -39,7 +41,8 @@ struct Scene {
   Eigen::AlignedBox3d world_bounds() const;
 };
 
-// Reads and validates a scene file, loading its robot and obstacle meshes. Throws
+// Reads and validates a scene file, loading its robot and obstacle meshes and dropping
+// obstacle triangles out of the robot's reach. Throws
 // InputError naming the file, line and key, and what to change. Start and goal are
 // checked against bounds and limits here; whether they collide needs a checker (see
 // check_start_and_goal in collision_checker.h).

@@ -1,0 +1,154 @@
+#pragma once
+// One collision query on host or device: forward kinematics of a configuration, the
+// bounding-sphere broad phase, and the BVTT traversal of each surviving body pair with
+// a private stack (the `basic` traversal, and the CPU backend). The other traversals
+// reuse the same pieces: poses, box tests and leaf tests.
+
+#include "gplanner/collision_gpu/geometry/obb.h"
+#include "gplanner/collision_gpu/geometry/triangle_distance.h"
+#include "gplanner/collision_gpu/model_view.h"
+
+namespace gplanner::detail {
+
+constexpr int kMaxLinks = 128;
+constexpr int kStackSize = 96;
+
+using Xf = geometry::Transform<float>;
+using V3f = geometry::Vec3<float>;
+
+// Work done, for the comparison of traversals against the hardware's peak rates.
+struct TraversalCounts {
+  unsigned long long bv_tests = 0;
+  unsigned long long triangle_tests = 0;
+};
+
+GP_HD Xf load_transform(const float* m) {
+  return {{{{m[0], m[1], m[2]}, {m[3], m[4], m[5]}, {m[6], m[7], m[8]}}}, {m[9], m[10], m[11]}};
+}
+
+// X_WR, the robot root in the world, for configuration q.
+GP_HD Xf base_pose(const CollisionModelView& m, const float* q) {
+  if (m.base == BaseKind::kFloating) {
+    return {geometry::quaternion_rotation(q[3], q[4], q[5], q[6]), {q[0], q[1], q[2]}};
+  }
+  const Xf X_WB = load_transform(m.X_WB);
+  if (m.base == BaseKind::kPlanar) {
+    const Xf X_BR{geometry::axis_angle(V3f{0, 0, 1}, q[2]), {q[0], q[1], 0}};
+    return X_WB * X_BR;
+  }
+  return X_WB;
+}
+
+// X_WL of every link (shape: [m.link_count]).
+GP_HD void link_poses(const CollisionModelView& m, const float* q, Xf* X_WL) {
+  X_WL[0] = base_pose(m, q);
+  for (int l = 1; l < m.link_count; ++l) {
+    const LinkKinematics& link = m.links[l];
+    Xf X_PL = load_transform(link.X_PJ);
+    if (link.motion != LinkMotion::kFixed) {
+      const float value = link.multiplier * (link.source >= 0 ? q[link.source] : 0.0f) + link.offset;
+      const V3f axis{link.axis[0], link.axis[1], link.axis[2]};
+      if (link.motion == LinkMotion::kRevolute) {
+        X_PL.R = X_PL.R * geometry::axis_angle(axis, value);
+      } else {
+        X_PL.t = X_PL.t + X_PL.R * (value * axis);
+      }
+    }
+    X_WL[l] = X_WL[link.parent] * X_PL;
+  }
+}
+
+GP_HD geometry::Vec3<double> widen(V3f p) { return {double(p.x), double(p.y), double(p.z)}; }
+
+// The leaf test: triangle ta of body A and tb of body B (moved into A's frame by
+// X_AB), compared in double so that only the float poses round.
+GP_HD bool leaf_collides(const BvhTriangle& ta, const BvhTriangle& tb, const Xf& X_AB, float threshold) {
+  geometry::Vec3<double> a[3], b[3];
+  for (int k = 0; k < 3; ++k) {
+    a[k] = widen(V3f{ta.v[k][0], ta.v[k][1], ta.v[k][2]});
+    b[k] = widen(X_AB * V3f{tb.v[k][0], tb.v[k][1], tb.v[k][2]});
+  }
+  return geometry::triangles_within(a, b, double(threshold));
+}
+
+GP_HD float box_size(const BvhNode& n) {
+  return n.extent[0] * n.extent[0] + n.extent[1] * n.extent[1] + n.extent[2] * n.extent[2];
+}
+
+// Whether bodies A and B (B placed in A's frame by X_AB) come within the threshold:
+// a depth-first walk of their BVTT with a private stack, descending into the larger box.
+GP_HD bool bodies_collide(const CollisionModelView& m, BodyRange a, BodyRange b, const Xf& X_AB,
+                          TraversalCounts* counts) {
+  int stack_a[kStackSize], stack_b[kStackSize];
+  int top = 0;
+  stack_a[0] = 0;
+  stack_b[0] = 0;
+  top = 1;
+  while (top > 0) {
+    --top;
+    const int ia = stack_a[top], ib = stack_b[top];
+    const BvhNode& na = m.nodes[a.node_offset + ia];
+    const BvhNode& nb = m.nodes[b.node_offset + ib];
+    if (counts) ++counts->bv_tests;
+    if (!geometry::obbs_overlap(node_box(na), geometry::transformed(node_box(nb), X_AB), m.margin)) continue;
+    if (na.is_leaf() && nb.is_leaf()) {
+      if (counts) ++counts->triangle_tests;
+      if (leaf_collides(m.triangles[a.triangle_offset + na.triangle()],
+                        m.triangles[b.triangle_offset + nb.triangle()], X_AB, m.threshold)) {
+        return true;
+      }
+      continue;
+    }
+    if (!na.is_leaf() && (nb.is_leaf() || box_size(na) >= box_size(nb))) {
+      stack_a[top] = na.child + 1; stack_b[top] = ib; ++top;
+      stack_a[top] = na.child;     stack_b[top] = ib; ++top;
+    } else {
+      stack_a[top] = ia; stack_b[top] = nb.child + 1; ++top;
+      stack_a[top] = ia; stack_b[top] = nb.child;     ++top;
+    }
+  }
+  return false;
+}
+
+GP_HD V3f sphere_center_W(const CollisionModelView& m, int link, const Xf& X_WL) {
+  const LinkSphere& s = m.link_spheres[link];
+  return X_WL * V3f{s.center[0], s.center[1], s.center[2]};
+}
+
+// Broad phase of link l against the environment: its bounding sphere against the
+// environment's root box.
+GP_HD bool link_may_touch_environment(const CollisionModelView& m, int l, const Xf& X_WL) {
+  if (m.environment.node_offset < 0 || m.link_bodies[l].node_offset < 0) return false;
+  return geometry::sphere_overlaps_obb(sphere_center_W(m, l, X_WL), m.link_spheres[l].radius,
+                                       node_box(m.nodes[m.environment.node_offset]), m.margin);
+}
+
+// Broad phase of a checked link pair: bounding sphere against bounding sphere.
+GP_HD bool pair_may_touch(const CollisionModelView& m, int p, const Xf* X_WL) {
+  const int la = m.pair_a[p], lb = m.pair_b[p];
+  const V3f d = sphere_center_W(m, la, X_WL[la]) - sphere_center_W(m, lb, X_WL[lb]);
+  const float reach = m.link_spheres[la].radius + m.link_spheres[lb].radius + m.margin;
+  return geometry::dot(d, d) <= reach * reach;
+}
+
+// The whole query: true when configuration q (shape: [m.width]) collides with the
+// environment or with itself. X_WL: scratch for m.link_count poses.
+GP_HD bool query_collides(const CollisionModelView& m, const float* q, Xf* X_WL, TraversalCounts* counts) {
+  link_poses(m, q, X_WL);
+  for (int l = 0; l < m.link_count; ++l) {
+    if (link_may_touch_environment(m, l, X_WL[l]) &&
+        bodies_collide(m, m.environment, m.link_bodies[l], X_WL[l], counts)) {
+      return true;
+    }
+  }
+  for (int p = 0; p < m.pair_count; ++p) {
+    if (!pair_may_touch(m, p, X_WL)) continue;
+    const int la = m.pair_a[p], lb = m.pair_b[p];
+    if (bodies_collide(m, m.link_bodies[la], m.link_bodies[lb], geometry::inverse(X_WL[la]) * X_WL[lb], counts)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace gplanner::detail

@@ -1,0 +1,65 @@
+#pragma once
+// A CollisionModel flattened into a few arrays (all BVHs concatenated), and the small
+// trivially-copyable view of it that traversal code takes by value, on host or device.
+
+#include <cstdint>
+#include <vector>
+
+#include "gplanner/collision_gpu/collision_model.h"
+
+namespace gplanner {
+
+// Where one body's BVH lies in the concatenated arrays; node_offset < 0: no geometry.
+struct BodyRange {
+  std::int32_t node_offset = -1;
+  std::int32_t triangle_offset = 0;
+};
+
+struct alignas(16) LinkSphere {
+  float center[3];  // in the link frame
+  float radius;
+};
+
+// Kept small: passed by value into kernels.
+struct CollisionModelView {
+  BaseKind base;
+  float X_WB[12];
+  std::int32_t width;
+  float threshold;  // leaf test: triangles closer than this collide
+  float margin;     // BV tests: boxes closer than this overlap
+  std::int32_t link_count;
+  const LinkKinematics* links;
+  const BodyRange* link_bodies;
+  const LinkSphere* link_spheres;
+  BodyRange environment;
+  const BvhNode* nodes;
+  const BvhTriangle* triangles;
+  std::int32_t pair_count;
+  const std::int32_t* pair_a;
+  const std::int32_t* pair_b;
+};
+
+// Host-side flat arrays of a model: what the CPU backend reads, and what the GPU
+// backend copies to the device as is.
+struct FlatCollisionModel {
+  explicit FlatCollisionModel(const CollisionModel& model);
+
+  CollisionModelView view() const;  // pointers into this object's vectors
+
+  BaseKind base;
+  float X_WB[12];
+  std::int32_t width;
+  float threshold;
+  std::vector<LinkKinematics> links;
+  std::vector<BodyRange> link_bodies;
+  std::vector<LinkSphere> link_spheres;
+  BodyRange environment;
+  std::vector<BvhNode> nodes;
+  std::vector<BvhTriangle> triangles;
+  std::vector<std::int32_t> pair_a, pair_b;
+};
+
+// Deepest node of a BVH (root: 1); traversal stacks are sized from it.
+int bvh_depth(const Bvh& bvh);
+
+}  // namespace gplanner

@@ -1,0 +1,91 @@
+#include "gplanner/collision_gpu/model_view.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "gplanner/collision_gpu/detail/query.h"
+
+namespace gplanner {
+namespace {
+
+BodyRange append_body(const Bvh& bvh, std::vector<BvhNode>* nodes, std::vector<BvhTriangle>* triangles) {
+  BodyRange range;
+  if (bvh.empty()) return range;
+  range.node_offset = static_cast<std::int32_t>(nodes->size());
+  range.triangle_offset = static_cast<std::int32_t>(triangles->size());
+  nodes->insert(nodes->end(), bvh.nodes.begin(), bvh.nodes.end());
+  triangles->insert(triangles->end(), bvh.triangles.begin(), bvh.triangles.end());
+  return range;
+}
+
+}  // namespace
+
+std::size_t CollisionModel::triangle_count() const {
+  std::size_t count = 0;
+  for (const Bvh& bvh : link_bvhs) count += bvh.triangles.size();
+  return count;
+}
+
+int bvh_depth(const Bvh& bvh) {
+  if (bvh.empty()) return 0;
+  int deepest = 0;
+  std::vector<std::pair<int, int>> stack{{0, 1}};
+  while (!stack.empty()) {
+    const auto [node, depth] = stack.back();
+    stack.pop_back();
+    deepest = std::max(deepest, depth);
+    if (!bvh.nodes[node].is_leaf()) {
+      stack.push_back({bvh.nodes[node].child, depth + 1});
+      stack.push_back({bvh.nodes[node].child + 1, depth + 1});
+    }
+  }
+  return deepest;
+}
+
+FlatCollisionModel::FlatCollisionModel(const CollisionModel& model)
+    : base(model.base), width(model.width), threshold(model.threshold), links(model.links),
+      pair_a(model.pair_a), pair_b(model.pair_b) {
+  std::memcpy(X_WB, model.X_WB, sizeof(X_WB));
+  if (links.empty() || static_cast<int>(links.size()) > detail::kMaxLinks) {
+    throw std::invalid_argument("a collision model needs 1 to " + std::to_string(detail::kMaxLinks) +
+                                " links, not " + std::to_string(links.size()));
+  }
+  if (model.link_bvhs.size() != links.size()) {
+    throw std::invalid_argument("a collision model needs one BVH (possibly empty) per link");
+  }
+  int deepest_link = 0;
+  for (const Bvh& bvh : model.link_bvhs) {
+    link_bodies.push_back(append_body(bvh, &nodes, &triangles));
+    link_spheres.push_back({{bvh.sphere_center[0], bvh.sphere_center[1], bvh.sphere_center[2]}, bvh.sphere_radius});
+    deepest_link = std::max(deepest_link, bvh_depth(bvh));
+  }
+  environment = append_body(model.environment, &nodes, &triangles);
+  if (deepest_link + std::max(deepest_link, bvh_depth(model.environment)) >= detail::kStackSize) {
+    throw std::invalid_argument("BVHs too deep for the traversal stack of " +
+                                std::to_string(detail::kStackSize) + " entries");
+  }
+}
+
+CollisionModelView FlatCollisionModel::view() const {
+  CollisionModelView v{};
+  v.base = base;
+  std::memcpy(v.X_WB, X_WB, sizeof(X_WB));
+  v.width = width;
+  v.threshold = threshold;
+  v.margin = 2 * threshold;
+  v.link_count = static_cast<std::int32_t>(links.size());
+  v.links = links.data();
+  v.link_bodies = link_bodies.data();
+  v.link_spheres = link_spheres.data();
+  v.environment = environment;
+  v.nodes = nodes.data();
+  v.triangles = triangles.data();
+  v.pair_count = static_cast<std::int32_t>(pair_a.size());
+  v.pair_a = pair_a.data();
+  v.pair_b = pair_b.data();
+  return v;
+}
+
+}  // namespace gplanner

@@ -12,7 +12,10 @@
 
 #include "command_line.h"
 #include "gplanner/planner/atomic_file.h"
+#include "gplanner/planner/checker_comparison.h"
 #include "gplanner/planner/checker_factory.h"
+#include "gplanner/planner/gpu_checker.h"
+#include "gplanner/planner/scene_collision_model.h"
 #include "gplanner/planner/scene.h"
 
 namespace gplan {
@@ -58,17 +61,57 @@ void check_with_progress(gplanner::CollisionChecker* checker, const std::vector<
   if (show) std::cerr << "\r" << std::string(40, ' ') << "\r";
 }
 
+// The checker for a --backend or --compare name, with its notice (a fallback) printed.
+std::unique_ptr<gplanner::CollisionChecker> make_checker(const gplanner::Scene& scene, const std::string& option,
+                                                         const std::string& backend,
+                                                         const gplanner::CheckerOptions& options) {
+  std::string notice;
+  try {
+    auto checker = gplanner::make_collision_checker(scene, backend, options, &notice);
+    if (!notice.empty()) std::cerr << "notice: " << notice << "\n";
+    return checker;
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("--" + option + ": " + e.what());
+  }
+}
+
+double check_timed(gplanner::CollisionChecker* checker, const std::vector<float>& q, std::size_t n,
+                   std::size_t width, std::vector<std::uint8_t>* verdicts) {
+  const auto start = Clock::now();
+  check_with_progress(checker, q, n, width, verdicts);
+  return seconds_since(start);
+}
+
+std::string gpu_details(gplanner::CollisionChecker* checker) {
+  auto* gpu = dynamic_cast<gplanner::GpuChecker*>(checker);
+  if (gpu == nullptr) return "";
+  const gplanner::GpuCheckStats& stats = gpu->last_stats();
+  std::ostringstream out;
+  out << gpu->device_name() << ", " << gplanner::traversal_name(gpu->traversal()) << " traversal, "
+      << std::setprecision(3) << stats.milliseconds << " ms on the GPU in " << stats.chunks << " chunk(s), "
+      << stats.bv_tests << " BV tests, " << stats.triangle_tests << " triangle tests";
+  return out.str();
+}
+
 }  // namespace
 
 int run_check(int argc, char** argv) {
-  const CommandLine args(argc, argv, 2, {"n", "seed", "backend", "threads", "out"}, {"json"});
+  const CommandLine args(argc, argv, 2,
+                         {"n", "seed", "backend", "traversal", "compare", "threads", "memory-cap-mb", "out"},
+                         {"json"});
   if (args.positionals().size() != 1) throw UsageError("gplan check takes one scene file");
   const std::string scene_file = args.positionals()[0];
   const std::size_t n = static_cast<std::size_t>(args.count("n", 10000));
   const unsigned long long seed = static_cast<unsigned long long>(args.count("seed", 1));
   const std::string backend = args.text("backend", "fcl");
+  const std::string compare = args.text("compare", "");
   gplanner::CheckerOptions options;
   options.threads = static_cast<int>(args.count("threads", 0));
+  options.gpu.memory_cap_bytes = static_cast<std::size_t>(args.count("memory-cap-mb", 0)) << 20;
+  if (args.has("traversal") &&
+      !gplanner::parse_traversal(args.text("traversal", ""), &options.gpu.traversal)) {
+    throw UsageError("--traversal: '" + args.text("traversal", "") + "' is not one of basic, packet, balanced");
+  }
 
   // Refuse an output file that cannot be written before doing the work, not after.
   const std::string out = args.text("out", "");
@@ -87,13 +130,9 @@ int run_check(int argc, char** argv) {
   const gplanner::ConfigurationSpace& space = scene.space;
   const std::size_t width = space.width();
   const auto pairs = scene.robot.checked_pairs();
+  const double delta = gplanner::tolerance_delta(scene);
 
-  std::unique_ptr<gplanner::CollisionChecker> checker;
-  try {
-    checker = gplanner::make_collision_checker(scene, backend, options);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--backend: ") + e.what());
-  }
+  std::unique_ptr<gplanner::CollisionChecker> checker = make_checker(scene, "backend", backend, options);
   gplanner::check_start_and_goal(scene, checker.get());
   const double line_collision = gplanner::first_collision_on_straight_line(scene, checker.get());
 
@@ -101,35 +140,62 @@ int run_check(int argc, char** argv) {
   std::mt19937_64 rng(seed);
   for (std::size_t i = 0; i < n; ++i) space.sample_uniform(&rng, &q[i * width]);
   std::vector<std::uint8_t> verdicts(n);
-  const auto check_start = Clock::now();
-  check_with_progress(checker.get(), q, n, width, &verdicts);
-  const double check_s = seconds_since(check_start);
+  const double check_s = check_timed(checker.get(), q, n, width, &verdicts);
   std::size_t collisions = 0;
   for (const std::uint8_t v : verdicts) collisions += v;
   const double fraction = n ? static_cast<double>(collisions) / n : 0.0;
   const double rate = check_s > 0 ? n / check_s : 0.0;
 
-  std::cout << "scene       " << scene_file << " (" << scene.name << "), loaded in "
-            << std::fixed << std::setprecision(3) << load_s << " s\n"
-            << "robot       " << scene.robot.name << ": " << scene.robot.links.size()
-            << " links, " << scene.robot.triangle_count() << " triangles, " << pairs.size()
-            << " checked link pairs; " << gplanner::base_type_name(space.base) << " base, "
-            << space.dof() << " DOF (" << width << " floats)\n"
+  std::cout << "scene       " << scene_file << " (" << scene.name << "), loaded in " << std::fixed
+            << std::setprecision(3) << load_s << " s\n"
+            << "robot       " << scene.robot.name << ": " << scene.robot.links.size() << " link"
+            << (scene.robot.links.size() == 1 ? "" : "s") << ", " << scene.robot.triangle_count()
+            << " triangles, " << pairs.size() << " checked link pairs; "
+            << gplanner::base_type_name(space.base) << " base, " << space.dof() << " DOF (" << width
+            << " floats)\n"
             << "obstacles   " << scene.obstacles.size() << " (" << scene.obstacle_triangle_count()
-            << " triangles)\n"
+            << " triangles; " << scene.dropped_obstacle_triangles << " out of the robot's reach dropped)\n"
+            << "tolerance   delta = " << std::scientific << std::setprecision(2) << delta << std::fixed
+            << " m\n"
             << "backend     " << checker->backend() << "\n"
             << "start, goal free; straight line start -> goal ";
   if (line_collision >= 0) {
-    std::cout << "collides (first at " << std::setprecision(1) << 100 * line_collision
-              << "% of the way)\n";
+    std::cout << "collides (first at " << std::setprecision(1) << 100 * line_collision << "% of the way)\n";
   } else {
     std::cout << "is free\n";
   }
   std::cout << "checked     " << n << " configurations (seed " << seed << ")\n"
-            << "collisions  " << collisions << " (" << std::setprecision(2) << 100 * fraction
-            << "%)\n"
-            << "time        " << std::setprecision(4) << check_s << " s, " << std::setprecision(0)
-            << rate << " queries/s\n";
+            << "collisions  " << collisions << " (" << std::setprecision(2) << 100 * fraction << "%)\n"
+            << "time        " << std::setprecision(4) << check_s << " s, " << std::setprecision(0) << rate
+            << " queries/s\n";
+  const std::string details = gpu_details(checker.get());
+  if (!details.empty()) std::cout << "gpu         " << details << "\n";
+
+  // --compare: the same configurations through a second backend, every disagreement
+  // judged by FCL's verdict and distance against the band.
+  gplanner::CheckerComparison comparison;
+  std::string compared_backend;
+  double compare_s = 0;
+  if (!compare.empty()) {
+    std::unique_ptr<gplanner::CollisionChecker> other = make_checker(scene, "compare", compare, options);
+    compared_backend = other->backend();
+    std::vector<std::uint8_t> other_verdicts(n);
+    compare_s = check_timed(other.get(), q, n, width, &other_verdicts);
+    gplanner::FclChecker judge(scene, options.threads);
+    comparison = gplanner::compare_verdicts(q.data(), n, width, verdicts.data(), other_verdicts.data(), &judge, delta);
+    std::cout << "compare     " << checker->backend() << " vs " << compared_backend << " (" << std::setprecision(4)
+              << compare_s << " s, " << std::setprecision(1) << (check_s > 0 ? compare_s / check_s : 0.0)
+              << "x the time): " << comparison.disagreements << " disagreements: " << comparison.missed_collisions
+              << " missed collisions, " << comparison.extra_within_band << " extra within the band, "
+              << comparison.extra_outside_band << " outside it";
+    if (comparison.extra_within_band + comparison.extra_outside_band > 0) {
+      std::cout << " (largest FCL distance " << std::scientific << std::setprecision(2)
+                << comparison.largest_extra_distance << std::fixed << " m)";
+    }
+    std::cout << "\n";
+    const std::string other_details = gpu_details(other.get());
+    if (!other_details.empty()) std::cout << "gpu         " << other_details << "\n";
+  }
 
   if (!out.empty()) {
     gplanner::write_file_atomically(out, [&](std::ostream& stream) {
@@ -143,17 +209,34 @@ int run_check(int argc, char** argv) {
   }
   if (args.flag("json")) {
     std::cout << std::setprecision(6) << "{\"scene\":" << json_string(scene_file)
-              << ",\"name\":" << json_string(scene.name)
-              << ",\"backend\":" << json_string(checker->backend()) << ",\"n\":" << n
-              << ",\"seed\":" << seed << ",\"dof\":" << space.dof() << ",\"width\":" << width
-              << ",\"links\":" << scene.robot.links.size()
-              << ",\"robot_triangles\":" << scene.robot.triangle_count()
+              << ",\"name\":" << json_string(scene.name) << ",\"backend\":" << json_string(checker->backend())
+              << ",\"n\":" << n << ",\"seed\":" << seed << ",\"dof\":" << space.dof() << ",\"width\":" << width
+              << ",\"links\":" << scene.robot.links.size() << ",\"robot_triangles\":" << scene.robot.triangle_count()
               << ",\"checked_pairs\":" << pairs.size()
               << ",\"obstacle_triangles\":" << scene.obstacle_triangle_count()
-              << ",\"collisions\":" << collisions << ",\"collision_fraction\":" << fraction
-              << ",\"seconds\":" << check_s << ",\"queries_per_second\":" << rate
-              << ",\"straight_line_collides\":" << (line_collision >= 0 ? "true" : "false")
-              << "}\n";
+              << ",\"dropped_obstacle_triangles\":" << scene.dropped_obstacle_triangles
+              << ",\"delta\":" << std::scientific << delta << std::fixed << ",\"collisions\":" << collisions
+              << ",\"collision_fraction\":" << fraction << ",\"seconds\":" << check_s
+              << ",\"queries_per_second\":" << rate
+              << ",\"straight_line_collides\":" << (line_collision >= 0 ? "true" : "false");
+    if (auto* gpu = dynamic_cast<gplanner::GpuChecker*>(checker.get())) {
+      std::cout << ",\"traversal\":" << json_string(gplanner::traversal_name(gpu->traversal()))
+                << ",\"gpu_ms\":" << gpu->last_stats().milliseconds << ",\"bv_tests\":" << gpu->last_stats().bv_tests
+                << ",\"triangle_tests\":" << gpu->last_stats().triangle_tests;
+    }
+    if (!compare.empty()) {
+      std::cout << ",\"compare\":{\"backend\":" << json_string(compared_backend) << ",\"seconds\":" << compare_s
+                << ",\"disagreements\":" << comparison.disagreements
+                << ",\"missed_collisions\":" << comparison.missed_collisions
+                << ",\"extra_within_band\":" << comparison.extra_within_band
+                << ",\"extra_outside_band\":" << comparison.extra_outside_band << "}";
+    }
+    std::cout << "}\n";
+  }
+  // A comparison that finds the band broken fails the run, so scripts notice.
+  if (comparison.missed_collisions + comparison.extra_outside_band > 0) {
+    std::cerr << "gplan: the checkers disagree outside the tolerance band\n";
+    return 3;
   }
   return 0;
 }

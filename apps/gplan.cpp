@@ -12,10 +12,14 @@ namespace {
 
 const char* kUsage =
     "usage: gplan COMMAND ...\n"
-    "  gplan check SCENE [--n N] [--seed S] [--backend fcl] [--threads T]\n"
-    "                    [--out FILE] [--json]\n"
+    "  gplan check SCENE [--n N] [--seed S] [--backend gpu|cpu|fcl]\n"
+    "                    [--traversal basic|packet|balanced] [--compare BACKEND]\n"
+    "                    [--threads T] [--memory-cap-mb M] [--out FILE] [--json]\n"
     "      sample N configurations (default 10000, seed 1) within the scene's bounds and\n"
-    "      joint limits and check them; --out writes each configuration's values and its\n"
+    "      joint limits and check them (default backend fcl; gpu falls back to cpu where\n"
+    "      there is no GPU); --compare runs a second backend on the same configurations\n"
+    "      and judges every disagreement by FCL's distance against the tolerance band\n"
+    "      (exit 3 when it is broken); --out writes each configuration's values and its\n"
     "      verdict (1 collision, 0 free), one per line; --json ends with a JSON summary\n"
     "  gplan info\n"
     "      how gplanner was built and which GPU it can use\n";

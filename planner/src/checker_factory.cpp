@@ -3,15 +3,24 @@
 #include <stdexcept>
 
 #include "gplanner/planner/cpu_checker.h"
+#include "gplanner/collision_gpu/gpu_device.h"
 #include "gplanner/planner/fcl_checker.h"
+#include "gplanner/planner/gpu_checker.h"
 
 namespace gplanner {
 
-std::vector<std::string> collision_backends() { return {"fcl", "cpu"}; }
+std::vector<std::string> collision_backends() { return {"gpu", "cpu", "fcl"}; }
 
 std::unique_ptr<CollisionChecker> make_collision_checker(const Scene& scene,
                                                          const std::string& backend,
-                                                         const CheckerOptions& options) {
+                                                         const CheckerOptions& options,
+                                                         std::string* notice) {
+  if (backend == "gpu") {
+    const GpuDevice device = query_gpu_device();
+    if (device.available) return std::make_unique<GpuChecker>(scene, options.gpu);
+    if (notice) *notice = "no GPU (" + device.reason + "): the cpu backend runs instead";
+    return std::make_unique<CpuChecker>(scene, options.threads);
+  }
   if (backend == "fcl") return std::make_unique<FclChecker>(scene, options.threads);
   if (backend == "cpu") return std::make_unique<CpuChecker>(scene, options.threads);
   std::string known;

@@ -1,0 +1,60 @@
+#pragma once
+// The batch collision checker on the GPU: configurations [n, width] in, one verdict
+// each out, with one of three traversals sharing BVHs, box tests, leaf tests and early
+// exit (see DESIGN.md, "Collision core"). Plain C++: no CUDA headers.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "gplanner/collision_gpu/collision_model.h"
+
+namespace gplanner {
+
+enum class Traversal {
+  kBasic,     // one thread per query, private stack
+  kPacket,    // k-means clustered queries, one warp per packet on one shared stack
+  kBalanced,  // one task per BV-pair or triangle test, in a global queue
+};
+
+const char* traversal_name(Traversal traversal);
+// Parses "basic", "packet" or "balanced"; false for anything else.
+bool parse_traversal(const std::string& name, Traversal* traversal);
+
+struct GpuCheckerOptions {
+  Traversal traversal = Traversal::kBalanced;
+  // Device memory the checker may use for one chunk of queries (configurations,
+  // verdicts, work queues); 0: half of the free memory. Larger batches are chunked.
+  std::size_t memory_cap_bytes = 0;
+};
+
+// What the last check() did.
+struct GpuCheckStats {
+  double milliseconds = 0;  // GPU time of the whole batch (events around all chunks)
+  std::size_t chunks = 0;
+  unsigned long long bv_tests = 0;
+  unsigned long long triangle_tests = 0;
+};
+
+class GpuBatchChecker {
+ public:
+  // Uploads the model once. Throws std::runtime_error when no GPU can be used (or the
+  // library was built without CUDA), saying why.
+  GpuBatchChecker(const CollisionModel& model, const GpuCheckerOptions& options);
+  ~GpuBatchChecker();
+  GpuBatchChecker(const GpuBatchChecker&) = delete;
+  GpuBatchChecker& operator=(const GpuBatchChecker&) = delete;
+
+  // configurations: host, shape [n, width]; verdicts: host, shape [n].
+  void check(const float* configurations, std::size_t n, std::uint8_t* verdicts);
+
+  const GpuCheckStats& last_stats() const;
+  std::string device_name() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gplanner

@@ -1,0 +1,586 @@
+// The GPU batch checker: model upload, chunking under a memory cap, and the three
+// traversals. Device functions come from detail/query.h, shared with the CPU backend.
+
+#include <cuda_runtime.h>
+
+#include <algorithm>
+#include <cub/device/device_radix_sort.cuh>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gplanner/collision_gpu/detail/query.h"
+#include "gplanner/collision_gpu/gpu_batch_checker.h"
+#include "gplanner/collision_gpu/model_view.h"
+
+namespace gplanner {
+namespace {
+
+void check_cuda(cudaError_t status, const char* what) {
+  if (status != cudaSuccess) {
+    throw std::runtime_error(std::string("CUDA: ") + what + ": " + cudaGetErrorString(status));
+  }
+}
+
+// An owning device buffer; kernels only ever see the raw pointer.
+template <typename T>
+class DeviceBuffer {
+ public:
+  DeviceBuffer() = default;
+  ~DeviceBuffer() { release(); }
+  DeviceBuffer(const DeviceBuffer&) = delete;
+  DeviceBuffer& operator=(const DeviceBuffer&) = delete;
+
+  void reserve(std::size_t count) {
+    if (count <= capacity_) return;
+    release();
+    check_cuda(cudaMalloc(&data_, std::max<std::size_t>(count, 1) * sizeof(T)), "cudaMalloc");
+    capacity_ = count;
+  }
+  void upload(const std::vector<T>& host) {
+    reserve(host.size());
+    if (!host.empty()) {
+      check_cuda(cudaMemcpy(data_, host.data(), host.size() * sizeof(T), cudaMemcpyHostToDevice), "upload");
+    }
+  }
+  T* get() const { return data_; }
+  std::size_t capacity() const { return capacity_; }
+
+ private:
+  void release() {
+    if (data_) cudaFree(data_);
+    data_ = nullptr;
+    capacity_ = 0;
+  }
+  T* data_ = nullptr;
+  std::size_t capacity_ = 0;
+};
+
+struct Counters {
+  unsigned long long bv_tests;
+  unsigned long long triangle_tests;
+  unsigned int jobs;          // balanced: jobs emitted
+  unsigned int jobs_overflow;
+  unsigned int tasks;         // balanced: children emitted by the last task launch
+};
+
+constexpr unsigned kFullMask = 0xffffffffu;
+
+// Adds this thread's counts to the global counters, one atomic per warp.
+__device__ void add_counts(const detail::TraversalCounts& counts, Counters* d_counters) {
+  unsigned long long bv = counts.bv_tests, tri = counts.triangle_tests;
+  for (int offset = 16; offset > 0; offset /= 2) {
+    bv += __shfl_down_sync(kFullMask, bv, offset);
+    tri += __shfl_down_sync(kFullMask, tri, offset);
+  }
+  if ((threadIdx.x & 31) == 0) {
+    atomicAdd(&d_counters->bv_tests, bv);
+    atomicAdd(&d_counters->triangle_tests, tri);
+  }
+}
+
+// ---------------------------------------------------------------- basic
+
+__global__ void basic_kernel(CollisionModelView m, const float* d_q, int n, std::uint8_t* d_verdicts,
+                             Counters* d_counters) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  detail::TraversalCounts counts;
+  if (i < n) {
+    detail::Xf X_WL[detail::kMaxLinks];
+    d_verdicts[i] = detail::query_collides(m, d_q + static_cast<std::size_t>(i) * m.width, X_WL, &counts) ? 1 : 0;
+  }
+  add_counts(counts, d_counters);
+}
+
+// ---------------------------------------------------------------- packet
+
+// k-means on configurations: assign every query to its nearest centre.
+__global__ void kmeans_assign_kernel(const float* d_q, int n, int width, const float* d_centres, int k,
+                                     unsigned* d_labels) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const float* q = d_q + static_cast<std::size_t>(i) * width;
+  float best = 3.4e38f;
+  unsigned label = 0;
+  for (int c = 0; c < k; ++c) {
+    float d2 = 0;
+    for (int j = 0; j < width; ++j) {
+      const float d = q[j] - d_centres[c * width + j];
+      d2 += d * d;
+    }
+    if (d2 < best) {
+      best = d2;
+      label = c;
+    }
+  }
+  d_labels[i] = label;
+}
+
+__global__ void kmeans_accumulate_kernel(const float* d_q, int n, int width, const unsigned* d_labels,
+                                         float* d_sums, unsigned* d_counts) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const unsigned c = d_labels[i];
+  for (int j = 0; j < width; ++j) atomicAdd(&d_sums[c * width + j], d_q[static_cast<std::size_t>(i) * width + j]);
+  atomicAdd(&d_counts[c], 1u);
+}
+
+__global__ void kmeans_update_kernel(float* d_centres, const float* d_sums, const unsigned* d_counts, int k,
+                                     int width) {
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= k * width) return;
+  const unsigned count = d_counts[t / width];
+  if (count > 0) d_centres[t] = d_sums[t] / count;  // an empty cluster keeps its centre
+}
+
+__global__ void kmeans_init_kernel(const float* d_q, int n, int width, float* d_centres, int k) {
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= k * width) return;
+  const int c = t / width, j = t % width;
+  const std::size_t sample = static_cast<std::size_t>(c) * n / k;  // evenly spread seeds
+  d_centres[t] = d_q[sample * width + j];
+}
+
+__global__ void iota_kernel(unsigned* d_values, int n) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) d_values[i] = i;
+}
+
+constexpr int kPacketWarpsPerBlock = 4;
+
+struct PacketEntry {
+  int a, b;
+  unsigned mask;  // lanes whose queries overlap this node pair
+};
+
+// One warp walks the BVTT of bodies A and B for its 32 queries together, on one shared
+// stack, each entry carrying the lanes that overlap it. Children are tested when their
+// parent is expanded; the pair more lanes overlap is visited first.
+__device__ void packet_traverse(const CollisionModelView& m, BodyRange a, BodyRange b, const detail::Xf& X_AB,
+                                unsigned active, PacketEntry* stack, bool* collided,
+                                detail::TraversalCounts* counts) {
+  const unsigned lane = threadIdx.x & 31;
+  const bool mine = (active >> lane) & 1u;
+  auto overlaps = [&](int ia, int ib) {
+    if (counts) ++counts->bv_tests;
+    return geometry::obbs_overlap(node_box(m.nodes[a.node_offset + ia]),
+                                  geometry::transformed(node_box(m.nodes[b.node_offset + ib]), X_AB), m.margin);
+  };
+  const unsigned root = __ballot_sync(kFullMask, mine && overlaps(0, 0));
+  if (root == 0) return;
+  int top = 0;
+  if (lane == 0) stack[0] = {0, 0, root};
+  top = 1;
+  __syncwarp();
+  while (top > 0) {
+    --top;
+    const PacketEntry entry = stack[top];
+    __syncwarp();
+    const unsigned done = __ballot_sync(kFullMask, *collided);
+    const unsigned mask = entry.mask & ~done;
+    if (mask == 0) continue;
+    const bool in = (mask >> lane) & 1u;
+    const BvhNode& na = m.nodes[a.node_offset + entry.a];
+    const BvhNode& nb = m.nodes[b.node_offset + entry.b];
+    if (na.is_leaf() && nb.is_leaf()) {
+      if (in) {
+        if (counts) ++counts->triangle_tests;
+        if (detail::leaf_collides(m.triangles[a.triangle_offset + na.triangle()],
+                                  m.triangles[b.triangle_offset + nb.triangle()], X_AB, m.threshold)) {
+          *collided = true;
+        }
+      }
+      continue;
+    }
+    int a0 = entry.a, a1 = entry.a, b0 = entry.b, b1 = entry.b;
+    if (!na.is_leaf() && (nb.is_leaf() || detail::box_size(na) >= detail::box_size(nb))) {
+      a0 = na.child;
+      a1 = na.child + 1;
+    } else {
+      b0 = nb.child;
+      b1 = nb.child + 1;
+    }
+    const unsigned m0 = __ballot_sync(kFullMask, in && overlaps(a0, b0));
+    const unsigned m1 = __ballot_sync(kFullMask, in && overlaps(a1, b1));
+    // Push the less popular pair first so that the more popular one is popped next.
+    const bool first_more = __popc(m0) >= __popc(m1);
+    const PacketEntry later{first_more ? a1 : a0, first_more ? b1 : b0, first_more ? m1 : m0};
+    const PacketEntry sooner{first_more ? a0 : a1, first_more ? b0 : b1, first_more ? m0 : m1};
+    if (lane == 0) {
+      if (later.mask) stack[top] = later;
+      if (sooner.mask) stack[top + (later.mask ? 1 : 0)] = sooner;
+    }
+    top += (later.mask ? 1 : 0) + (sooner.mask ? 1 : 0);
+    __syncwarp();
+  }
+}
+
+__global__ void packet_kernel(CollisionModelView m, const float* d_q, int n, const unsigned* d_order,
+                              std::uint8_t* d_verdicts, Counters* d_counters) {
+  __shared__ PacketEntry stacks[kPacketWarpsPerBlock][detail::kStackSize];
+  const int warp = threadIdx.x / 32;
+  const int index = (blockIdx.x * kPacketWarpsPerBlock + warp) * 32 + (threadIdx.x & 31);
+  const bool valid = index < n;
+  const int query = valid ? static_cast<int>(d_order[index]) : 0;
+  detail::TraversalCounts counts;
+  detail::Xf X_WL[detail::kMaxLinks];
+  if (valid) detail::link_poses(m, d_q + static_cast<std::size_t>(query) * m.width, X_WL);
+  bool collided = false;
+  const int bodies = m.link_count + m.pair_count;
+  for (int body = 0; body < bodies; ++body) {
+    if (__all_sync(kFullMask, !valid || collided)) break;
+    BodyRange a, b;
+    detail::Xf X_AB;
+    bool may_touch;
+    if (body < m.link_count) {
+      a = m.environment;
+      b = m.link_bodies[body];
+      X_AB = X_WL[body];
+      may_touch = valid && !collided && detail::link_may_touch_environment(m, body, X_AB);
+    } else {
+      const int p = body - m.link_count;
+      a = m.link_bodies[m.pair_a[p]];
+      b = m.link_bodies[m.pair_b[p]];
+      may_touch = valid && !collided && detail::pair_may_touch(m, p, X_WL);
+      X_AB = geometry::inverse(X_WL[m.pair_a[p]]) * X_WL[m.pair_b[p]];
+    }
+    const unsigned active = __ballot_sync(kFullMask, may_touch);
+    if (active) packet_traverse(m, a, b, X_AB, active, stacks[warp], &collided, &counts);
+  }
+  if (valid) d_verdicts[query] = collided ? 1 : 0;
+  add_counts(counts, d_counters);
+}
+
+// ---------------------------------------------------------------- balanced
+
+// One body pair of one query that survived the broad phase: the unit tasks refer to.
+struct alignas(16) Job {
+  int query;
+  BodyRange a, b;
+  float X_AB[12];
+};
+
+struct Task {
+  int job, a, b;
+};
+
+__device__ void store_transform(const detail::Xf& X, float* out) {
+  for (int i = 0; i < 3; ++i) {
+    out[3 * i] = X.R.r[i].x;
+    out[3 * i + 1] = X.R.r[i].y;
+    out[3 * i + 2] = X.R.r[i].z;
+  }
+  out[9] = X.t.x;
+  out[10] = X.t.y;
+  out[11] = X.t.z;
+}
+
+// Kinematics and broad phase per query; every surviving body pair becomes a job with
+// one root task.
+__global__ void balanced_roots_kernel(CollisionModelView m, const float* d_q, int n, Job* d_jobs, int job_capacity,
+                                      Task* d_tasks, Counters* d_counters) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  detail::Xf X_WL[detail::kMaxLinks];
+  detail::link_poses(m, d_q + static_cast<std::size_t>(i) * m.width, X_WL);
+  auto emit = [&](BodyRange a, BodyRange b, const detail::Xf& X_AB) {
+    const unsigned slot = atomicAdd(&d_counters->jobs, 1u);
+    if (slot >= static_cast<unsigned>(job_capacity)) {
+      d_counters->jobs_overflow = 1;
+      return;
+    }
+    Job job;
+    job.query = i;
+    job.a = a;
+    job.b = b;
+    store_transform(X_AB, job.X_AB);
+    d_jobs[slot] = job;
+    d_tasks[slot] = {static_cast<int>(slot), 0, 0};
+  };
+  for (int l = 0; l < m.link_count; ++l) {
+    if (detail::link_may_touch_environment(m, l, X_WL[l])) emit(m.environment, m.link_bodies[l], X_WL[l]);
+  }
+  for (int p = 0; p < m.pair_count; ++p) {
+    if (detail::pair_may_touch(m, p, X_WL)) {
+      emit(m.link_bodies[m.pair_a[p]], m.link_bodies[m.pair_b[p]],
+           geometry::inverse(X_WL[m.pair_a[p]]) * X_WL[m.pair_b[p]]);
+    }
+  }
+}
+
+// One task per thread: a BV-pair test, or a triangle test at two leaves. Overlapping
+// inner pairs spawn their two child pairs into d_children (one atomic per warp).
+__global__ void balanced_task_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_tasks, int count,
+                                     Task* d_children, std::uint8_t* d_collided, Counters* d_counters) {
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  detail::TraversalCounts counts;
+  int spawn = 0;
+  Task c0{}, c1{};
+  if (t < count) {
+    const Task task = d_tasks[t];
+    const Job& job = d_jobs[task.job];
+    if (!d_collided[job.query]) {
+      const detail::Xf X_AB = detail::load_transform(job.X_AB);
+      const BvhNode& na = m.nodes[job.a.node_offset + task.a];
+      const BvhNode& nb = m.nodes[job.b.node_offset + task.b];
+      ++counts.bv_tests;
+      if (geometry::obbs_overlap(node_box(na), geometry::transformed(node_box(nb), X_AB), m.margin)) {
+        if (na.is_leaf() && nb.is_leaf()) {
+          ++counts.triangle_tests;
+          if (detail::leaf_collides(m.triangles[job.a.triangle_offset + na.triangle()],
+                                    m.triangles[job.b.triangle_offset + nb.triangle()], X_AB, m.threshold)) {
+            d_collided[job.query] = 1;
+          }
+        } else if (!na.is_leaf() && (nb.is_leaf() || detail::box_size(na) >= detail::box_size(nb))) {
+          c0 = {task.job, na.child, task.b};
+          c1 = {task.job, na.child + 1, task.b};
+          spawn = 2;
+        } else {
+          c0 = {task.job, task.a, nb.child};
+          c1 = {task.job, task.a, nb.child + 1};
+          spawn = 2;
+        }
+      }
+    }
+  }
+  // Warp-aggregated append of the children.
+  const unsigned lane = threadIdx.x & 31;
+  int offset = spawn;
+  for (int d = 1; d < 32; d *= 2) {
+    const int other = __shfl_up_sync(kFullMask, offset, d);
+    if (lane >= static_cast<unsigned>(d)) offset += other;
+  }
+  const int total = __shfl_sync(kFullMask, offset, 31);
+  unsigned base = 0;
+  if (lane == 31 && total > 0) base = atomicAdd(&d_counters->tasks, static_cast<unsigned>(total));
+  base = __shfl_sync(kFullMask, base, 31);
+  if (spawn) {
+    const unsigned at = base + offset - spawn;
+    d_children[at] = c0;
+    d_children[at + 1] = c1;
+  }
+  add_counts(counts, d_counters);
+}
+
+int blocks_for(std::size_t n, int threads) { return static_cast<int>((n + threads - 1) / threads); }
+
+}  // namespace
+
+struct GpuBatchChecker::Impl {
+  GpuCheckerOptions options;
+  FlatCollisionModel host;
+  CollisionModelView view{};
+  std::string device_name;
+  std::size_t memory_cap = 0;
+  GpuCheckStats stats;
+
+  DeviceBuffer<LinkKinematics> links;
+  DeviceBuffer<BodyRange> link_bodies;
+  DeviceBuffer<LinkSphere> link_spheres;
+  DeviceBuffer<BvhNode> nodes;
+  DeviceBuffer<BvhTriangle> triangles;
+  DeviceBuffer<std::int32_t> pair_a, pair_b;
+
+  DeviceBuffer<float> configurations;
+  DeviceBuffer<std::uint8_t> verdicts;
+  DeviceBuffer<Counters> counters;
+  // packet
+  DeviceBuffer<unsigned> labels, sorted_labels, order, identity;
+  DeviceBuffer<float> centres, sums;
+  DeviceBuffer<unsigned> cluster_counts;
+  DeviceBuffer<unsigned char> sort_scratch;
+  // balanced
+  DeviceBuffer<Job> jobs;
+  DeviceBuffer<Task> tasks, children;
+
+  Impl(const CollisionModel& model, const GpuCheckerOptions& o) : options(o), host(model) {
+    int count = 0;
+    check_cuda(cudaGetDeviceCount(&count), "no usable GPU");
+    if (count == 0) throw std::runtime_error("no CUDA device found");
+    cudaDeviceProp properties{};
+    check_cuda(cudaGetDeviceProperties(&properties, 0), "cudaGetDeviceProperties");
+    device_name = properties.name;
+    std::size_t free_bytes = 0, total_bytes = 0;
+    check_cuda(cudaMemGetInfo(&free_bytes, &total_bytes), "cudaMemGetInfo");
+    memory_cap = options.memory_cap_bytes ? options.memory_cap_bytes : free_bytes / 2;
+
+    links.upload(host.links);
+    link_bodies.upload(host.link_bodies);
+    link_spheres.upload(host.link_spheres);
+    nodes.upload(host.nodes);
+    triangles.upload(host.triangles);
+    pair_a.upload(host.pair_a);
+    pair_b.upload(host.pair_b);
+    counters.reserve(1);
+    view = host.view();
+    view.links = links.get();
+    view.link_bodies = link_bodies.get();
+    view.link_spheres = link_spheres.get();
+    view.nodes = nodes.get();
+    view.triangles = triangles.get();
+    view.pair_a = pair_a.get();
+    view.pair_b = pair_b.get();
+  }
+
+  Counters read_counters() {
+    Counters c;
+    check_cuda(cudaMemcpy(&c, counters.get(), sizeof(c), cudaMemcpyDeviceToHost), "read counters");
+    return c;
+  }
+
+  // Queries per chunk under the memory cap, for `bytes_per_query` of chunk-sized buffers.
+  std::size_t chunk_size(std::size_t n, std::size_t bytes_per_query, double share) const {
+    const std::size_t fit = static_cast<std::size_t>(share * memory_cap) / bytes_per_query;
+    return std::max<std::size_t>(1, std::min(n, fit));
+  }
+
+  void run_basic(int n) {
+    basic_kernel<<<blocks_for(n, 128), 128>>>(view, configurations.get(), n, verdicts.get(), counters.get());
+    check_cuda(cudaGetLastError(), "basic kernel");
+  }
+
+  void run_packet(int n) {
+    const int width = view.width;
+    const int k = std::max(1, n / 256);
+    labels.reserve(n);
+    sorted_labels.reserve(n);
+    order.reserve(n);
+    identity.reserve(n);
+    centres.reserve(static_cast<std::size_t>(k) * width);
+    sums.reserve(static_cast<std::size_t>(k) * width);
+    cluster_counts.reserve(k);
+    kmeans_init_kernel<<<blocks_for(k * width, 256), 256>>>(configurations.get(), n, width, centres.get(), k);
+    for (int iteration = 0; iteration < 4; ++iteration) {
+      kmeans_assign_kernel<<<blocks_for(n, 256), 256>>>(configurations.get(), n, width, centres.get(), k, labels.get());
+      check_cuda(cudaMemset(sums.get(), 0, sizeof(float) * k * width), "memset");
+      check_cuda(cudaMemset(cluster_counts.get(), 0, sizeof(unsigned) * k), "memset");
+      kmeans_accumulate_kernel<<<blocks_for(n, 256), 256>>>(configurations.get(), n, width, labels.get(), sums.get(),
+                                                          cluster_counts.get());
+      kmeans_update_kernel<<<blocks_for(k * width, 256), 256>>>(centres.get(), sums.get(), cluster_counts.get(), k, width);
+    }
+    kmeans_assign_kernel<<<blocks_for(n, 256), 256>>>(configurations.get(), n, width, centres.get(), k, labels.get());
+    iota_kernel<<<blocks_for(n, 256), 256>>>(identity.get(), n);
+    int bits = 1;
+    while ((1 << bits) < k) ++bits;
+    std::size_t scratch_bytes = 0;
+    cub::DeviceRadixSort::SortPairs(nullptr, scratch_bytes, labels.get(), sorted_labels.get(), identity.get(),
+                                    order.get(), n, 0, bits);
+    sort_scratch.reserve(scratch_bytes);
+    check_cuda(cub::DeviceRadixSort::SortPairs(sort_scratch.get(), scratch_bytes, labels.get(), sorted_labels.get(),
+                                               identity.get(), order.get(), n, 0, bits),
+               "sort");
+    const int packets = (n + 31) / 32;
+    packet_kernel<<<blocks_for(packets, kPacketWarpsPerBlock), 32 * kPacketWarpsPerBlock>>>(
+        view, configurations.get(), n, order.get(), verdicts.get(), counters.get());
+    check_cuda(cudaGetLastError(), "packet kernel");
+  }
+
+  // Returns false when the chunk emitted more jobs than fit: run it again, smaller.
+  bool run_balanced(int n, std::size_t job_capacity, std::size_t task_capacity) {
+    check_cuda(cudaMemset(verdicts.get(), 0, n), "memset");
+    balanced_roots_kernel<<<blocks_for(n, 128), 128>>>(view, configurations.get(), n, jobs.get(),
+                                                       static_cast<int>(job_capacity), tasks.get(), counters.get());
+    check_cuda(cudaGetLastError(), "balanced roots kernel");
+    Counters c = read_counters();
+    if (c.jobs_overflow) return false;
+    std::size_t top = c.jobs;
+    const std::size_t max_launch = 1u << 22;
+    while (top > 0) {
+      const std::size_t room = task_capacity - top;
+      const std::size_t launch = std::min({top, room, max_launch});
+      if (launch == 0) throw std::runtime_error("balanced traversal: task queue full; lower the batch size");
+      check_cuda(cudaMemset(&counters.get()->tasks, 0, sizeof(unsigned)), "memset");
+      const std::size_t begin = top - launch;
+      balanced_task_kernel<<<blocks_for(launch, 256), 256>>>(view, jobs.get(), tasks.get() + begin,
+                                                             static_cast<int>(launch), children.get(), verdicts.get(),
+                                                             counters.get());
+      check_cuda(cudaGetLastError(), "balanced task kernel");
+      unsigned spawned = 0;
+      check_cuda(cudaMemcpy(&spawned, &counters.get()->tasks, sizeof(unsigned), cudaMemcpyDeviceToHost), "read");
+      if (spawned) {
+        check_cuda(cudaMemcpy(tasks.get() + begin, children.get(), spawned * sizeof(Task), cudaMemcpyDeviceToDevice),
+                   "move tasks");
+      }
+      top = begin + spawned;
+    }
+    return true;
+  }
+
+  void check(const float* h_q, std::size_t n, std::uint8_t* h_verdicts) {
+    stats = {};
+    if (n == 0) return;
+    const std::size_t width = view.width;
+    const std::size_t per_query = width * sizeof(float) + 1 + 4 * sizeof(unsigned);
+    std::size_t chunk = chunk_size(n, per_query, options.traversal == Traversal::kBalanced ? 0.1 : 0.9);
+    std::size_t job_capacity = 0, task_capacity = 0;
+    if (options.traversal == Traversal::kBalanced) {
+      const std::size_t bodies = static_cast<std::size_t>(view.link_count) + view.pair_count;
+      job_capacity = std::min(chunk * bodies, static_cast<std::size_t>(0.3 * memory_cap) / sizeof(Job));
+      task_capacity = std::max<std::size_t>(2 * job_capacity + 4096,
+                                            static_cast<std::size_t>(0.25 * memory_cap) / sizeof(Task));
+      task_capacity = std::min<std::size_t>(task_capacity, 1u << 30);
+      jobs.reserve(job_capacity);
+      tasks.reserve(task_capacity);
+      children.reserve(std::min<std::size_t>(task_capacity, 2u << 22));
+    }
+    configurations.reserve(chunk * width);
+    verdicts.reserve(chunk);
+    check_cuda(cudaMemset(counters.get(), 0, sizeof(Counters)), "memset");
+
+    cudaEvent_t start, stop;
+    check_cuda(cudaEventCreate(&start), "event");
+    check_cuda(cudaEventCreate(&stop), "event");
+    check_cuda(cudaEventRecord(start), "event");
+    std::size_t done = 0;
+    while (done < n) {
+      const std::size_t count = std::min(chunk, n - done);
+      check_cuda(cudaMemcpy(configurations.get(), h_q + done * width, count * width * sizeof(float),
+                            cudaMemcpyHostToDevice),
+                 "upload configurations");
+      const int m = static_cast<int>(count);
+      if (options.traversal == Traversal::kBasic) {
+        run_basic(m);
+      } else if (options.traversal == Traversal::kPacket) {
+        run_packet(m);
+      } else {
+        Counters before = read_counters();
+        before.jobs = 0;
+        before.jobs_overflow = 0;
+        check_cuda(cudaMemcpy(counters.get(), &before, sizeof(before), cudaMemcpyHostToDevice), "counters");
+        if (!run_balanced(m, job_capacity, task_capacity)) {
+          if (chunk == 1) throw std::runtime_error("balanced traversal: one query needs more jobs than fit");
+          chunk = std::max<std::size_t>(1, chunk / 2);
+          continue;  // the same queries again, fewer at a time
+        }
+      }
+      check_cuda(cudaMemcpy(h_verdicts + done, verdicts.get(), count, cudaMemcpyDeviceToHost), "download verdicts");
+      done += count;
+      ++stats.chunks;
+    }
+    check_cuda(cudaEventRecord(stop), "event");
+    check_cuda(cudaEventSynchronize(stop), "event");
+    float ms = 0;
+    check_cuda(cudaEventElapsedTime(&ms, start, stop), "event");
+    cudaEventDestroy(start);
+    cudaEventDestroy(stop);
+    const Counters c = read_counters();
+    stats.milliseconds = ms;
+    stats.bv_tests = c.bv_tests;
+    stats.triangle_tests = c.triangle_tests;
+  }
+};
+
+GpuBatchChecker::GpuBatchChecker(const CollisionModel& model, const GpuCheckerOptions& options)
+    : impl_(std::make_unique<Impl>(model, options)) {}
+
+GpuBatchChecker::~GpuBatchChecker() = default;
+
+void GpuBatchChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts) {
+  impl_->check(configurations, n, verdicts);
+}
+
+const GpuCheckStats& GpuBatchChecker::last_stats() const { return impl_->stats; }
+
+std::string GpuBatchChecker::device_name() const { return impl_->device_name; }
+
+}  // namespace gplanner

@@ -1,0 +1,26 @@
+// The GPU checker in a build without CUDA: it cannot be constructed.
+#include <stdexcept>
+
+#include "gplanner/collision_gpu/gpu_batch_checker.h"
+
+namespace gplanner {
+
+struct GpuBatchChecker::Impl {
+  GpuCheckStats stats;
+};
+
+GpuBatchChecker::GpuBatchChecker(const CollisionModel&, const GpuCheckerOptions&) {
+  throw std::runtime_error("gplanner was built without CUDA");
+}
+
+GpuBatchChecker::~GpuBatchChecker() = default;
+
+void GpuBatchChecker::check(const float*, std::size_t, std::uint8_t*) {
+  throw std::runtime_error("gplanner was built without CUDA");
+}
+
+const GpuCheckStats& GpuBatchChecker::last_stats() const { return impl_->stats; }
+
+std::string GpuBatchChecker::device_name() const { return ""; }
+
+}  // namespace gplanner

@@ -7,24 +7,11 @@
 
 #include "gplanner/planner/fcl_checker.h"
 #include "gplanner/planner/scene.h"
+#include "planner/scene_test_support.h"
 #include "test_support.h"
 
 namespace gplanner {
 namespace {
-
-namespace fs = std::filesystem;
-
-std::vector<std::string> shipped_scenes() {
-  std::vector<std::string> files;
-  const fs::path folder = fs::path(testing::project_root()) / "scenes";
-  if (fs::is_directory(folder)) {
-    for (const auto& entry : fs::directory_iterator(folder)) {
-      if (entry.path().extension() == ".yaml") files.push_back(entry.path().filename().string());
-    }
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 class ShippedScene : public ::testing::TestWithParam<std::string> {};
 
@@ -44,15 +31,13 @@ TEST_P(ShippedScene, IsARealPlanningProblem) {
 }
 
 TEST(ShippedScenes, DefaultSceneExists) {
-  const std::vector<std::string> scenes = shipped_scenes();
+  const std::vector<std::string> scenes = testing::shipped_scene_files();
   EXPECT_NE(std::find(scenes.begin(), scenes.end(), "piano.yaml"), scenes.end());
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::ValuesIn(shipped_scenes()),
+INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::ValuesIn(testing::shipped_scene_files()),
                          [](const ::testing::TestParamInfo<std::string>& info) {
-                           std::string name = fs::path(info.param).stem().string();
-                           for (char& c : name) if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
+                           return testing::scene_test_name(info.param);
                          });
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(ShippedScene);
 

@@ -1,0 +1,108 @@
+// GPU tests (names contain "Gpu"): the gpu backend, each traversal, against the cpu
+// backend on seeded batches of every shipped scene. They assert that the GPU ran and
+// skip only where there is no device.
+
+#include "gplanner/planner/gpu_checker.h"
+
+#include <gtest/gtest.h>
+
+#include "gplanner/collision_gpu/gpu_device.h"
+#include "gplanner/planner/checker_comparison.h"
+#include "gplanner/planner/checker_factory.h"
+#include "gplanner/planner/cpu_checker.h"
+#include "gplanner/planner/scene_collision_model.h"
+#include "planner/scene_test_support.h"
+#include "test_support.h"
+
+namespace gplanner {
+namespace {
+
+#define REQUIRE_GPU()                                                   \
+  do {                                                                  \
+    const GpuDevice device = query_gpu_device();                        \
+    if (!device.available) GTEST_SKIP() << "no GPU: " << device.reason; \
+  } while (0)
+
+struct Case {
+  std::string scene;
+  Traversal traversal;
+};
+
+void PrintTo(const Case& c, std::ostream* out) { *out << c.scene << " " << traversal_name(c.traversal); }
+
+class GpuMatchesCpu : public ::testing::TestWithParam<Case> {};
+
+TEST_P(GpuMatchesCpu, OnASeededBatch) {
+  REQUIRE_GPU();
+  const Scene scene = load_scene(testing::project_root() + "/scenes/" + GetParam().scene);
+  const std::size_t n = 5000, width = scene.space.width();
+  const std::vector<float> q = testing::sample_configurations(scene, n, 23);
+  CheckerOptions options;
+  options.gpu.traversal = GetParam().traversal;
+  std::string notice;
+  const std::unique_ptr<CollisionChecker> checker = make_collision_checker(scene, "gpu", options, &notice);
+  ASSERT_EQ(checker->backend(), "gpu") << notice;
+  auto* gpu = dynamic_cast<GpuChecker*>(checker.get());
+  ASSERT_NE(gpu, nullptr);
+  std::vector<std::uint8_t> on_gpu(n), on_cpu(n);
+  gpu->check(q.data(), n, on_gpu.data());
+  EXPECT_GT(gpu->last_stats().bv_tests, 0u) << "the GPU did no work";
+  EXPECT_GT(gpu->last_stats().milliseconds, 0.0);
+  CpuChecker cpu(scene);
+  cpu.check(q.data(), n, on_cpu.data());
+  FclChecker fcl(scene);
+  const CheckerComparison c =
+      compare_verdicts(q.data(), n, width, on_gpu.data(), on_cpu.data(), &fcl, tolerance_delta(scene));
+  EXPECT_EQ(c.missed_collisions, 0u);
+  EXPECT_EQ(c.extra_outside_band, 0u);
+  EXPECT_LE(c.disagreements, n / 200) << "GPU and CPU run the same code: they should nearly always agree";
+  std::cout << GetParam().scene << " " << traversal_name(GetParam().traversal) << ": " << c.disagreements
+            << " disagreements with the cpu backend, " << gpu->last_stats().milliseconds << " ms, "
+            << gpu->last_stats().bv_tests << " BV tests, " << gpu->last_stats().triangle_tests
+            << " triangle tests on " << gpu->device_name() << "\n";
+}
+
+std::vector<Case> all_cases() {
+  std::vector<Case> cases;
+  for (const std::string& scene : testing::shipped_scene_files()) {
+    for (const Traversal t : {Traversal::kBasic, Traversal::kPacket, Traversal::kBalanced}) cases.push_back({scene, t});
+  }
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, GpuMatchesCpu, ::testing::ValuesIn(all_cases()),
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           return testing::scene_test_name(info.param.scene) + "_" +
+                                  traversal_name(info.param.traversal);
+                         });
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(GpuMatchesCpu);
+
+TEST(GpuChecker, ChunksBatchesOverTheMemoryCap) {
+  REQUIRE_GPU();
+  const Scene scene = load_scene(testing::project_root() + "/scenes/humanoid.yaml");
+  const std::size_t n = 3000;
+  const std::vector<float> q = testing::sample_configurations(scene, n, 29);
+  for (const Traversal t : {Traversal::kBasic, Traversal::kPacket, Traversal::kBalanced}) {
+    GpuCheckerOptions whole, capped;
+    whole.traversal = capped.traversal = t;
+    capped.memory_cap_bytes = 256 * 1024;
+    GpuChecker a(scene, whole), b(scene, capped);
+    std::vector<std::uint8_t> va(n), vb(n);
+    a.check(q.data(), n, va.data());
+    b.check(q.data(), n, vb.data());
+    EXPECT_EQ(a.last_stats().chunks, 1u) << traversal_name(t);
+    EXPECT_GT(b.last_stats().chunks, 1u) << traversal_name(t);
+    EXPECT_EQ(va, vb) << traversal_name(t);
+  }
+}
+
+TEST(GpuChecker, AnswersAnEmptyBatch) {
+  REQUIRE_GPU();
+  const Scene scene = load_scene(testing::project_root() + "/scenes/helicopter.yaml");
+  GpuChecker gpu(scene, {});
+  gpu.check(nullptr, 0, nullptr);
+  EXPECT_EQ(gpu.last_stats().chunks, 0u);
+}
+
+}  // namespace
+}  // namespace gplanner

@@ -308,44 +308,64 @@ __global__ void balanced_roots_kernel(CollisionModelView m, const float* d_q, in
   }
 }
 
-// One task per thread: a BV-pair test, or a triangle test at two leaves. Overlapping
-// inner pairs spawn their two child pairs into d_children (one atomic per warp).
+// Steps of depth-first traversal one task runs before it hands what is left of its
+// stack back to the queue: short enough that the work of one hard query spreads over
+// many threads in the next launch, long enough that a query finding a collision stops
+// its own search early.
+constexpr int kTaskSteps = 32;
+
+// One task per thread: up to kTaskSteps BV-pair tests (and triangle tests at leaf
+// pairs) depth-first from the task's node pair; the node pairs left on its stack become
+// new tasks in d_children (one atomic per warp).
 __global__ void balanced_task_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_tasks, int count,
                                      Task* d_children, std::uint8_t* d_collided, Counters* d_counters) {
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
   detail::TraversalCounts counts;
-  int spawn = 0;
-  Task c0{}, c1{};
+  int stack_a[detail::kStackSize], stack_b[detail::kStackSize];
+  int top = 0;
+  int job_index = 0;
   if (t < count) {
     const Task task = d_tasks[t];
+    job_index = task.job;
     const Job& job = d_jobs[task.job];
     if (!d_collided[job.query]) {
       const detail::Xf X_AB = detail::load_transform(job.X_AB);
-      const BvhNode& na = m.nodes[job.a.node_offset + task.a];
-      const BvhNode& nb = m.nodes[job.b.node_offset + task.b];
-      ++counts.bv_tests;
-      if (geometry::obbs_overlap(node_box(na), geometry::transformed(node_box(nb), X_AB), m.margin)) {
+      stack_a[0] = task.a;
+      stack_b[0] = task.b;
+      top = 1;
+      for (int step = 0; top > 0 && step < kTaskSteps; ++step) {
+        if ((step & 7) == 7 && d_collided[job.query]) {
+          top = 0;  // another task of this query found a collision
+          break;
+        }
+        --top;
+        const int ia = stack_a[top], ib = stack_b[top];
+        const BvhNode& na = m.nodes[job.a.node_offset + ia];
+        const BvhNode& nb = m.nodes[job.b.node_offset + ib];
+        ++counts.bv_tests;
+        if (!geometry::obbs_overlap(node_box(na), geometry::transformed(node_box(nb), X_AB), m.margin)) continue;
         if (na.is_leaf() && nb.is_leaf()) {
           ++counts.triangle_tests;
           if (detail::leaf_collides(m.triangles[job.a.triangle_offset + na.triangle()],
                                     m.triangles[job.b.triangle_offset + nb.triangle()], X_AB, m.threshold)) {
             d_collided[job.query] = 1;
+            top = 0;
           }
-        } else if (!na.is_leaf() && (nb.is_leaf() || detail::box_size(na) >= detail::box_size(nb))) {
-          c0 = {task.job, na.child, task.b};
-          c1 = {task.job, na.child + 1, task.b};
-          spawn = 2;
+          continue;
+        }
+        if (!na.is_leaf() && (nb.is_leaf() || detail::box_size(na) >= detail::box_size(nb))) {
+          stack_a[top] = na.child + 1; stack_b[top] = ib; ++top;
+          stack_a[top] = na.child;     stack_b[top] = ib; ++top;
         } else {
-          c0 = {task.job, task.a, nb.child};
-          c1 = {task.job, task.a, nb.child + 1};
-          spawn = 2;
+          stack_a[top] = ia; stack_b[top] = nb.child + 1; ++top;
+          stack_a[top] = ia; stack_b[top] = nb.child;     ++top;
         }
       }
     }
   }
-  // Warp-aggregated append of the children.
+  // Warp-aggregated append of what is left.
   const unsigned lane = threadIdx.x & 31;
-  int offset = spawn;
+  int offset = top;
   for (int d = 1; d < 32; d *= 2) {
     const int other = __shfl_up_sync(kFullMask, offset, d);
     if (lane >= static_cast<unsigned>(d)) offset += other;
@@ -354,11 +374,8 @@ __global__ void balanced_task_kernel(CollisionModelView m, const Job* d_jobs, co
   unsigned base = 0;
   if (lane == 31 && total > 0) base = atomicAdd(&d_counters->tasks, static_cast<unsigned>(total));
   base = __shfl_sync(kFullMask, base, 31);
-  if (spawn) {
-    const unsigned at = base + offset - spawn;
-    d_children[at] = c0;
-    d_children[at + 1] = c1;
-  }
+  const unsigned at = base + offset - top;
+  for (int k = 0; k < top; ++k) d_children[at + k] = {job_index, stack_a[k], stack_b[k]};
   add_counts(counts, d_counters);
 }
 
@@ -476,7 +493,7 @@ struct GpuBatchChecker::Impl {
   }
 
   // Returns false when the chunk emitted more jobs than fit: run it again, smaller.
-  bool run_balanced(int n, std::size_t job_capacity, std::size_t task_capacity) {
+  bool run_balanced(int n, std::size_t job_capacity, std::size_t task_capacity, std::size_t children_capacity) {
     check_cuda(cudaMemset(verdicts.get(), 0, n), "memset");
     balanced_roots_kernel<<<blocks_for(n, 128), 128>>>(view, configurations.get(), n, jobs.get(),
                                                        static_cast<int>(job_capacity), tasks.get(), counters.get());
@@ -484,9 +501,11 @@ struct GpuBatchChecker::Impl {
     Counters c = read_counters();
     if (c.jobs_overflow) return false;
     std::size_t top = c.jobs;
-    const std::size_t max_launch = 1u << 22;
+    // Each task may leave up to a full stack behind.
+    const std::size_t max_launch = std::min<std::size_t>(1u << 20, children_capacity / detail::kStackSize);
     while (top > 0) {
-      const std::size_t room = task_capacity - top;
+      // After the launch, top - launch + (up to kStackSize per task) must still fit.
+      const std::size_t room = (task_capacity - top) / (detail::kStackSize - 1);
       const std::size_t launch = std::min({top, room, max_launch});
       if (launch == 0) throw std::runtime_error("balanced traversal: task queue full; lower the batch size");
       check_cuda(cudaMemset(&counters.get()->tasks, 0, sizeof(unsigned)), "memset");
@@ -512,16 +531,17 @@ struct GpuBatchChecker::Impl {
     const std::size_t width = view.width;
     const std::size_t per_query = width * sizeof(float) + 1 + 4 * sizeof(unsigned);
     std::size_t chunk = chunk_size(n, per_query, options.traversal == Traversal::kBalanced ? 0.1 : 0.9);
-    std::size_t job_capacity = 0, task_capacity = 0;
+    std::size_t job_capacity = 0, task_capacity = 0, children_capacity = 0;
     if (options.traversal == Traversal::kBalanced) {
       const std::size_t bodies = static_cast<std::size_t>(view.link_count) + view.pair_count;
       job_capacity = std::min(chunk * bodies, static_cast<std::size_t>(0.3 * memory_cap) / sizeof(Job));
-      task_capacity = std::max<std::size_t>(2 * job_capacity + 4096,
+      task_capacity = std::max<std::size_t>(2 * job_capacity + 4 * detail::kStackSize,
                                             static_cast<std::size_t>(0.25 * memory_cap) / sizeof(Task));
       task_capacity = std::min<std::size_t>(task_capacity, 1u << 30);
       jobs.reserve(job_capacity);
       tasks.reserve(task_capacity);
-      children.reserve(std::min<std::size_t>(task_capacity, 2u << 22));
+      children_capacity = std::min<std::size_t>(task_capacity, std::size_t(detail::kStackSize) << 20);
+      children.reserve(children_capacity);
     }
     configurations.reserve(chunk * width);
     verdicts.reserve(chunk);
@@ -547,7 +567,7 @@ struct GpuBatchChecker::Impl {
         before.jobs = 0;
         before.jobs_overflow = 0;
         check_cuda(cudaMemcpy(counters.get(), &before, sizeof(before), cudaMemcpyHostToDevice), "counters");
-        if (!run_balanced(m, job_capacity, task_capacity)) {
+        if (!run_balanced(m, job_capacity, task_capacity, children_capacity)) {
           if (chunk == 1) throw std::runtime_error("balanced traversal: one query needs more jobs than fit");
           chunk = std::max<std::size_t>(1, chunk / 2);
           continue;  // the same queries again, fewer at a time

@@ -62,7 +62,7 @@ void fit_node(const std::vector<Eigen::Vector3d>& corners, const std::vector<int
     node->extent[k] = static_cast<float>(extent[k] + slack);
     for (int c = 0; c < 3; ++c) node->axes[3 * k + c] = static_cast<float>(axes(k, c));
   }
-  node->unused = 0;
+  node->radius = static_cast<float>((extent.array() + slack).matrix().norm() * (1 + 1e-6));
 }
 
 }  // namespace

@@ -163,8 +163,7 @@ __device__ void packet_traverse(const CollisionModelView& m, BodyRange a, BodyRa
   const bool mine = (active >> lane) & 1u;
   auto overlaps = [&](int ia, int ib) {
     if (counts) ++counts->bv_tests;
-    return geometry::obbs_overlap(node_box(m.nodes[a.node_offset + ia]),
-                                  geometry::transformed(node_box(m.nodes[b.node_offset + ib]), X_AB), m.margin);
+    return detail::nodes_overlap(m.nodes[a.node_offset + ia], m.nodes[b.node_offset + ib], X_AB, m.margin);
   };
   const unsigned root = __ballot_sync(kFullMask, mine && overlaps(0, 0));
   if (root == 0) return;
@@ -343,7 +342,7 @@ __global__ void balanced_task_kernel(CollisionModelView m, const Job* d_jobs, co
         const BvhNode& na = m.nodes[job.a.node_offset + ia];
         const BvhNode& nb = m.nodes[job.b.node_offset + ib];
         ++counts.bv_tests;
-        if (!geometry::obbs_overlap(node_box(na), geometry::transformed(node_box(nb), X_AB), m.margin)) continue;
+        if (!detail::nodes_overlap(na, nb, X_AB, m.margin)) continue;
         if (na.is_leaf() && nb.is_leaf()) {
           ++counts.triangle_tests;
           if (detail::leaf_collides(m.triangles[job.a.triangle_offset + na.triangle()],

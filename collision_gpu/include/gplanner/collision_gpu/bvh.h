@@ -17,7 +17,7 @@ struct alignas(16) BvhNode {
   std::int32_t child;
   float axes[9];  // row-major; the columns are the box's unit axes
   float extent[3];
-  std::int32_t unused;
+  float radius;  // |extent|: the box's bounding sphere about its centre, for a cheap first test
 
   GP_HD bool is_leaf() const { return child < 0; }
   GP_HD int triangle() const { return -child - 1; }

@@ -71,6 +71,16 @@ GP_HD bool leaf_collides(const BvhTriangle& ta, const BvhTriangle& tb, const Xf&
   return geometry::triangles_within(a, b, double(threshold));
 }
 
+// Whether two nodes' boxes (B's placed in A's frame by X_AB) come within the margin:
+// their bounding spheres first, which reject most far pairs for a few flops, then the
+// separating-axis test.
+GP_HD bool nodes_overlap(const BvhNode& na, const BvhNode& nb, const Xf& X_AB, float margin) {
+  const V3f d = X_AB * V3f{nb.center[0], nb.center[1], nb.center[2]} - V3f{na.center[0], na.center[1], na.center[2]};
+  const float reach = na.radius + nb.radius + margin;
+  if (geometry::dot(d, d) > reach * reach) return false;
+  return geometry::obbs_overlap(node_box(na), geometry::transformed(node_box(nb), X_AB), margin);
+}
+
 GP_HD float box_size(const BvhNode& n) {
   return n.extent[0] * n.extent[0] + n.extent[1] * n.extent[1] + n.extent[2] * n.extent[2];
 }
@@ -90,7 +100,7 @@ GP_HD bool bodies_collide(const CollisionModelView& m, BodyRange a, BodyRange b,
     const BvhNode& na = m.nodes[a.node_offset + ia];
     const BvhNode& nb = m.nodes[b.node_offset + ib];
     if (counts) ++counts->bv_tests;
-    if (!geometry::obbs_overlap(node_box(na), geometry::transformed(node_box(nb), X_AB), m.margin)) continue;
+    if (!nodes_overlap(na, nb, X_AB, m.margin)) continue;
     if (na.is_leaf() && nb.is_leaf()) {
       if (counts) ++counts->triangle_tests;
       if (leaf_collides(m.triangles[a.triangle_offset + na.triangle()],

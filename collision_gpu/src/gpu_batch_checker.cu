@@ -320,7 +320,8 @@ __global__ void balanced_task_kernel(CollisionModelView m, const Job* d_jobs, co
                                      Task* d_children, std::uint8_t* d_collided, Counters* d_counters) {
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
   detail::TraversalCounts counts;
-  int stack_a[detail::kStackSize], stack_b[detail::kStackSize];
+  // Each step pops one pair and pushes at most two: kTaskSteps + 1 entries suffice.
+  int stack_a[kTaskSteps + 1], stack_b[kTaskSteps + 1];
   int top = 0;
   int job_index = 0;
   if (t < count) {
@@ -500,11 +501,11 @@ struct GpuBatchChecker::Impl {
     Counters c = read_counters();
     if (c.jobs_overflow) return false;
     std::size_t top = c.jobs;
-    // Each task may leave up to a full stack behind.
-    const std::size_t max_launch = std::min<std::size_t>(1u << 20, children_capacity / detail::kStackSize);
+    // Each task may leave up to kTaskSteps + 1 node pairs behind.
+    const std::size_t max_launch = std::min<std::size_t>(1u << 20, children_capacity / (kTaskSteps + 1));
     while (top > 0) {
-      // After the launch, top - launch + (up to kStackSize per task) must still fit.
-      const std::size_t room = (task_capacity - top) / (detail::kStackSize - 1);
+      // After the launch, top - launch + (up to kTaskSteps + 1 per task) must still fit.
+      const std::size_t room = (task_capacity - top) / kTaskSteps;
       const std::size_t launch = std::min({top, room, max_launch});
       if (launch == 0) throw std::runtime_error("balanced traversal: task queue full; lower the batch size");
       check_cuda(cudaMemset(&counters.get()->tasks, 0, sizeof(unsigned)), "memset");
@@ -513,6 +514,7 @@ struct GpuBatchChecker::Impl {
                                                              static_cast<int>(launch), children.get(), verdicts.get(),
                                                              counters.get());
       check_cuda(cudaGetLastError(), "balanced task kernel");
+      ++stats.task_launches;
       unsigned spawned = 0;
       check_cuda(cudaMemcpy(&spawned, &counters.get()->tasks, sizeof(unsigned), cudaMemcpyDeviceToHost), "read");
       if (spawned) {
@@ -534,12 +536,12 @@ struct GpuBatchChecker::Impl {
     if (options.traversal == Traversal::kBalanced) {
       const std::size_t bodies = static_cast<std::size_t>(view.link_count) + view.pair_count;
       job_capacity = std::min(chunk * bodies, static_cast<std::size_t>(0.3 * memory_cap) / sizeof(Job));
-      task_capacity = std::max<std::size_t>(2 * job_capacity + 4 * detail::kStackSize,
+      task_capacity = std::max<std::size_t>(2 * job_capacity + 4 * (kTaskSteps + 1),
                                             static_cast<std::size_t>(0.25 * memory_cap) / sizeof(Task));
       task_capacity = std::min<std::size_t>(task_capacity, 1u << 30);
       jobs.reserve(job_capacity);
       tasks.reserve(task_capacity);
-      children_capacity = std::min<std::size_t>(task_capacity, std::size_t(detail::kStackSize) << 20);
+      children_capacity = std::min<std::size_t>(task_capacity, std::size_t(kTaskSteps + 1) << 20);
       children.reserve(children_capacity);
     }
     configurations.reserve(chunk * width);

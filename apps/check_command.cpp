@@ -90,7 +90,7 @@ std::string gpu_details(gplanner::CollisionChecker* checker) {
   out << gpu->device_name() << ", " << gplanner::traversal_name(gpu->traversal()) << " traversal, "
       << std::setprecision(3) << stats.milliseconds << " ms on the GPU in " << stats.chunks << " chunk(s), "
       << stats.bv_tests << " BV tests, " << stats.triangle_tests << " triangle tests";
-  if (stats.task_launches) out << ", " << stats.task_launches << " task launches";
+  if (stats.rounds) out << ", " << stats.rounds << " rounds";
   return out.str();
 }
 
@@ -224,7 +224,7 @@ int run_check(int argc, char** argv) {
       std::cout << ",\"traversal\":" << json_string(gplanner::traversal_name(gpu->traversal()))
                 << ",\"gpu_ms\":" << gpu->last_stats().milliseconds << ",\"bv_tests\":" << gpu->last_stats().bv_tests
                 << ",\"triangle_tests\":" << gpu->last_stats().triangle_tests
-                << ",\"task_launches\":" << gpu->last_stats().task_launches;
+                << ",\"rounds\":" << gpu->last_stats().rounds;
     }
     if (!compare.empty()) {
       std::cout << ",\"compare\":{\"backend\":" << json_string(compared_backend) << ",\"seconds\":" << compare_s

@@ -62,6 +62,7 @@ struct Counters {
   unsigned int jobs;          // balanced: jobs emitted
   unsigned int jobs_overflow;
   unsigned int tasks;         // balanced: children emitted by the last task launch
+  unsigned int leaves;        // balanced: leaf pairs emitted by the last task launch
 };
 
 constexpr unsigned kFullMask = 0xffffffffu;
@@ -259,6 +260,8 @@ struct alignas(16) Job {
   float X_AB[12];
 };
 
+// A node pair of a job: an inner pair to traverse, or (in the leaf queue) two leaves
+// whose triangles to test.
 struct Task {
   int job, a, b;
 };
@@ -313,11 +316,14 @@ __global__ void balanced_roots_kernel(CollisionModelView m, const float* d_q, in
 // its own search early.
 constexpr int kTaskSteps = 32;
 
-// One task per thread: up to kTaskSteps BV-pair tests (and triangle tests at leaf
-// pairs) depth-first from the task's node pair; the node pairs left on its stack become
+// One task per thread: up to kTaskSteps BV-pair tests depth-first from the task's node
+// pair. Overlapping leaf pairs go to the leaf queue, tested by balanced_leaf_kernel
+// (the double-precision triangle test would otherwise stall the whole warp and, with
+// its registers, cut the threads that fit); the node pairs left on the stack become
 // new tasks in d_children (one atomic per warp).
-__global__ void balanced_task_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_tasks, int count,
-                                     Task* d_children, std::uint8_t* d_collided, Counters* d_counters) {
+__global__ void __launch_bounds__(256, 4)
+balanced_task_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_tasks, int count, Task* d_children,
+                     Task* d_leaves, unsigned leaf_capacity, const std::uint8_t* d_collided, Counters* d_counters) {
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
   detail::TraversalCounts counts;
   // Each step pops one pair and pushes at most two: kTaskSteps + 1 entries suffice.
@@ -335,7 +341,7 @@ __global__ void balanced_task_kernel(CollisionModelView m, const Job* d_jobs, co
       top = 1;
       for (int step = 0; top > 0 && step < kTaskSteps; ++step) {
         if ((step & 7) == 7 && d_collided[job.query]) {
-          top = 0;  // another task of this query found a collision
+          top = 0;  // a leaf test of this query found a collision
           break;
         }
         --top;
@@ -345,11 +351,12 @@ __global__ void balanced_task_kernel(CollisionModelView m, const Job* d_jobs, co
         ++counts.bv_tests;
         if (!detail::nodes_overlap(na, nb, X_AB, m.margin)) continue;
         if (na.is_leaf() && nb.is_leaf()) {
-          ++counts.triangle_tests;
-          if (detail::leaf_collides(m.triangles[job.a.triangle_offset + na.triangle()],
-                                    m.triangles[job.b.triangle_offset + nb.triangle()], X_AB, m.threshold)) {
-            d_collided[job.query] = 1;
-            top = 0;
+          const unsigned slot = atomicAdd(&d_counters->leaves, 1u);
+          if (slot < leaf_capacity) {
+            d_leaves[slot] = {task.job, na.triangle(), nb.triangle()};
+          } else {
+            ++top;  // the leaf queue is full: keep the pair as a task for the next launch
+            break;
           }
           continue;
         }
@@ -376,6 +383,25 @@ __global__ void balanced_task_kernel(CollisionModelView m, const Job* d_jobs, co
   base = __shfl_sync(kFullMask, base, 31);
   const unsigned at = base + offset - top;
   for (int k = 0; k < top; ++k) d_children[at + k] = {job_index, stack_a[k], stack_b[k]};
+  add_counts(counts, d_counters);
+}
+
+// One leaf pair per thread: the triangle test, marking the query when it collides.
+__global__ void balanced_leaf_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_leaves, int count,
+                                     std::uint8_t* d_collided, Counters* d_counters) {
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  detail::TraversalCounts counts;
+  if (t < count) {
+    const Task leaf = d_leaves[t];
+    const Job& job = d_jobs[leaf.job];
+    if (!d_collided[job.query]) {
+      ++counts.triangle_tests;
+      if (detail::leaf_collides(m.triangles[job.a.triangle_offset + leaf.a], m.triangles[job.b.triangle_offset + leaf.b],
+                                detail::load_transform(job.X_AB), m.threshold)) {
+        d_collided[job.query] = 1;
+      }
+    }
+  }
   add_counts(counts, d_counters);
 }
 
@@ -408,7 +434,7 @@ struct GpuBatchChecker::Impl {
   DeviceBuffer<unsigned char> sort_scratch;
   // balanced
   DeviceBuffer<Job> jobs;
-  DeviceBuffer<Task> tasks, children;
+  DeviceBuffer<Task> tasks, children, leaves;
 
   Impl(const CollisionModel& model, const GpuCheckerOptions& o) : options(o), host(model) {
     int count = 0;
@@ -493,7 +519,8 @@ struct GpuBatchChecker::Impl {
   }
 
   // Returns false when the chunk emitted more jobs than fit: run it again, smaller.
-  bool run_balanced(int n, std::size_t job_capacity, std::size_t task_capacity, std::size_t children_capacity) {
+  bool run_balanced(int n, std::size_t job_capacity, std::size_t task_capacity, std::size_t children_capacity,
+                    std::size_t leaf_capacity) {
     check_cuda(cudaMemset(verdicts.get(), 0, n), "memset");
     balanced_roots_kernel<<<blocks_for(n, 128), 128>>>(view, configurations.get(), n, jobs.get(),
                                                        static_cast<int>(job_capacity), tasks.get(), counters.get());
@@ -508,17 +535,26 @@ struct GpuBatchChecker::Impl {
       const std::size_t room = (task_capacity - top) / kTaskSteps;
       const std::size_t launch = std::min({top, room, max_launch});
       if (launch == 0) throw std::runtime_error("balanced traversal: task queue full; lower the batch size");
-      check_cuda(cudaMemset(&counters.get()->tasks, 0, sizeof(unsigned)), "memset");
+      check_cuda(cudaMemset(&counters.get()->tasks, 0, 2 * sizeof(unsigned)), "memset");  // tasks, leaves
       const std::size_t begin = top - launch;
-      balanced_task_kernel<<<blocks_for(launch, 256), 256>>>(view, jobs.get(), tasks.get() + begin,
-                                                             static_cast<int>(launch), children.get(), verdicts.get(),
-                                                             counters.get());
+      balanced_task_kernel<<<blocks_for(launch, 256), 256>>>(
+          view, jobs.get(), tasks.get() + begin, static_cast<int>(launch), children.get(), leaves.get(),
+          static_cast<unsigned>(leaf_capacity), verdicts.get(), counters.get());
       check_cuda(cudaGetLastError(), "balanced task kernel");
-      ++stats.task_launches;
-      unsigned spawned = 0;
-      check_cuda(cudaMemcpy(&spawned, &counters.get()->tasks, sizeof(unsigned), cudaMemcpyDeviceToHost), "read");
+      ++stats.rounds;
+      unsigned emitted[2] = {0, 0};  // tasks, leaves
+      check_cuda(cudaMemcpy(emitted, &counters.get()->tasks, sizeof(emitted), cudaMemcpyDeviceToHost), "read");
+      const unsigned spawned = emitted[0];
+      const unsigned leaf_count = std::min<unsigned>(emitted[1], static_cast<unsigned>(leaf_capacity));
+      if (leaf_count) {
+        balanced_leaf_kernel<<<blocks_for(leaf_count, 256), 256>>>(view, jobs.get(), leaves.get(),
+                                                                   static_cast<int>(leaf_count), verdicts.get(),
+                                                                   counters.get());
+        check_cuda(cudaGetLastError(), "balanced leaf kernel");
+      }
       if (spawned) {
-        check_cuda(cudaMemcpy(tasks.get() + begin, children.get(), spawned * sizeof(Task), cudaMemcpyDeviceToDevice),
+        check_cuda(cudaMemcpyAsync(tasks.get() + begin, children.get(), spawned * sizeof(Task),
+                                   cudaMemcpyDeviceToDevice),
                    "move tasks");
       }
       top = begin + spawned;
@@ -532,7 +568,7 @@ struct GpuBatchChecker::Impl {
     const std::size_t width = view.width;
     const std::size_t per_query = width * sizeof(float) + 1 + 4 * sizeof(unsigned);
     std::size_t chunk = chunk_size(n, per_query, options.traversal == Traversal::kBalanced ? 0.1 : 0.9);
-    std::size_t job_capacity = 0, task_capacity = 0, children_capacity = 0;
+    std::size_t job_capacity = 0, task_capacity = 0, children_capacity = 0, leaf_capacity = 0;
     if (options.traversal == Traversal::kBalanced) {
       const std::size_t bodies = static_cast<std::size_t>(view.link_count) + view.pair_count;
       job_capacity = std::min(chunk * bodies, static_cast<std::size_t>(0.3 * memory_cap) / sizeof(Job));
@@ -543,6 +579,9 @@ struct GpuBatchChecker::Impl {
       tasks.reserve(task_capacity);
       children_capacity = std::min<std::size_t>(task_capacity, std::size_t(kTaskSteps + 1) << 20);
       children.reserve(children_capacity);
+      leaf_capacity = std::max<std::size_t>(1024, std::min<std::size_t>(std::size_t(1) << 22,
+                                                                       static_cast<std::size_t>(0.05 * memory_cap) / sizeof(Task)));
+      leaves.reserve(leaf_capacity);
     }
     configurations.reserve(chunk * width);
     verdicts.reserve(chunk);
@@ -568,7 +607,7 @@ struct GpuBatchChecker::Impl {
         before.jobs = 0;
         before.jobs_overflow = 0;
         check_cuda(cudaMemcpy(counters.get(), &before, sizeof(before), cudaMemcpyHostToDevice), "counters");
-        if (!run_balanced(m, job_capacity, task_capacity, children_capacity)) {
+        if (!run_balanced(m, job_capacity, task_capacity, children_capacity, leaf_capacity)) {
           if (chunk == 1) throw std::runtime_error("balanced traversal: one query needs more jobs than fit");
           chunk = std::max<std::size_t>(1, chunk / 2);
           continue;  // the same queries again, fewer at a time

@@ -33,7 +33,7 @@ struct GpuCheckerOptions {
 struct GpuCheckStats {
   double milliseconds = 0;  // GPU time of the whole batch (events around all chunks)
   std::size_t chunks = 0;
-  std::size_t task_launches = 0;  // balanced: launches of the task kernel (each a host round trip)
+  std::size_t rounds = 0;  // balanced: launches of the task kernel (each a host round trip)
   unsigned long long bv_tests = 0;
   unsigned long long triangle_tests = 0;
 };

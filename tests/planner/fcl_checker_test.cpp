@@ -7,6 +7,7 @@
 #include <random>
 
 #include "gplanner/planner/scene.h"
+#include "planner/scene_test_support.h"
 #include "test_support.h"
 
 namespace gplanner {
@@ -84,9 +85,7 @@ TEST_F(FclCheckerTest, SeparatedAndPenetratingCubes) {
 TEST_F(FclCheckerTest, VerdictsDoNotDependOnThreadCount) {
   const Scene scene = rigid_scene();
   const int n = 3000, width = scene.space.width();
-  std::vector<float> q(n * width);
-  std::mt19937_64 rng(11);
-  for (int i = 0; i < n; ++i) scene.space.sample_uniform(&rng, &q[i * width]);
+  const std::vector<float> q = testing::sample_configurations(scene, n, 11);
   FclChecker one(scene, 1), four(scene, 4);
   std::vector<std::uint8_t> a(n), b(n);
   one.check(q.data(), n, a.data());

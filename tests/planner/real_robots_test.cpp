@@ -9,6 +9,7 @@
 #include "gplanner/planner/fcl_checker.h"
 #include "gplanner/planner/scene.h"
 #include "gplanner/planner/urdf_loader.h"
+#include "planner/scene_test_support.h"
 #include "test_support.h"
 
 namespace gplanner {
@@ -102,10 +103,8 @@ std::string write_scene(const testing::ScratchFolder& scratch, const RealRobot& 
 // the floor is out of reach), some are free, and the result is the same on 1 and 4
 // threads.
 void answers_a_batch(const Scene& scene) {
-  const int n = 400, width = scene.space.width();
-  std::vector<float> q(n * width);
-  std::mt19937_64 rng(5);
-  for (int i = 0; i < n; ++i) scene.space.sample_uniform(&rng, &q[i * width]);
+  const int n = 400;
+  const std::vector<float> q = testing::sample_configurations(scene, n, 5);
   FclChecker one(scene, 1), all(scene, 4);
   std::vector<std::uint8_t> a(n), b(n);
   one.check(q.data(), n, a.data());

@@ -360,13 +360,10 @@ balanced_task_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_task
           }
           continue;
         }
-        if (!na.is_leaf() && (nb.is_leaf() || detail::box_size(na) >= detail::box_size(nb))) {
-          stack_a[top] = na.child + 1; stack_b[top] = ib; ++top;
-          stack_a[top] = na.child;     stack_b[top] = ib; ++top;
-        } else {
-          stack_a[top] = ia; stack_b[top] = nb.child + 1; ++top;
-          stack_a[top] = ia; stack_b[top] = nb.child;     ++top;
-        }
+        detail::NodePair first, second;
+        detail::split_pair(m, job.a, job.b, X_AB, ia, ib, na, nb, &first, &second);
+        stack_a[top] = second.a; stack_b[top] = second.b; ++top;
+        stack_a[top] = first.a;  stack_b[top] = first.b;  ++top;
       }
     }
   }

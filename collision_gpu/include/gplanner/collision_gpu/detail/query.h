@@ -81,12 +81,42 @@ GP_HD bool nodes_overlap(const BvhNode& na, const BvhNode& nb, const Xf& X_AB, f
   return geometry::obbs_overlap(node_box(na), geometry::transformed(node_box(nb), X_AB), margin);
 }
 
+// Squared distance from a node's box centre to point p (in the node's frame).
+GP_HD float squared_distance(const BvhNode& n, V3f p) {
+  const V3f d = p - V3f{n.center[0], n.center[1], n.center[2]};
+  return geometry::dot(d, d);
+}
+
 GP_HD float box_size(const BvhNode& n) {
   return n.extent[0] * n.extent[0] + n.extent[1] * n.extent[1] + n.extent[2] * n.extent[2];
 }
 
+struct NodePair {
+  int a, b;
+};
+
+// The two child pairs of an overlapping inner node pair (ia, ib): the larger box is
+// split, and the child whose centre lies nearer the other box's centre comes first,
+// being the likelier to hold a collision, so that a query stops sooner.
+GP_HD void split_pair(const CollisionModelView& m, BodyRange a, BodyRange b, const Xf& X_AB, int ia, int ib,
+                      const BvhNode& na, const BvhNode& nb, NodePair* first, NodePair* second) {
+  if (!na.is_leaf() && (nb.is_leaf() || box_size(na) >= box_size(nb))) {
+    const V3f c = X_AB * V3f{nb.center[0], nb.center[1], nb.center[2]};
+    const bool swap = squared_distance(m.nodes[a.node_offset + na.child + 1], c) <
+                      squared_distance(m.nodes[a.node_offset + na.child], c);
+    *first = {na.child + (swap ? 1 : 0), ib};
+    *second = {na.child + (swap ? 0 : 1), ib};
+  } else {
+    const V3f c = geometry::inverse(X_AB) * V3f{na.center[0], na.center[1], na.center[2]};
+    const bool swap = squared_distance(m.nodes[b.node_offset + nb.child + 1], c) <
+                      squared_distance(m.nodes[b.node_offset + nb.child], c);
+    *first = {ia, nb.child + (swap ? 1 : 0)};
+    *second = {ia, nb.child + (swap ? 0 : 1)};
+  }
+}
+
 // Whether bodies A and B (B placed in A's frame by X_AB) come within the threshold:
-// a depth-first walk of their BVTT with a private stack, descending into the larger box.
+// a depth-first walk of their BVTT with a private stack, in split_pair's order.
 GP_HD bool bodies_collide(const CollisionModelView& m, BodyRange a, BodyRange b, const Xf& X_AB,
                           TraversalCounts* counts) {
   int stack_a[kStackSize], stack_b[kStackSize];
@@ -109,13 +139,10 @@ GP_HD bool bodies_collide(const CollisionModelView& m, BodyRange a, BodyRange b,
       }
       continue;
     }
-    if (!na.is_leaf() && (nb.is_leaf() || box_size(na) >= box_size(nb))) {
-      stack_a[top] = na.child + 1; stack_b[top] = ib; ++top;
-      stack_a[top] = na.child;     stack_b[top] = ib; ++top;
-    } else {
-      stack_a[top] = ia; stack_b[top] = nb.child + 1; ++top;
-      stack_a[top] = ia; stack_b[top] = nb.child;     ++top;
-    }
+    NodePair first, second;
+    split_pair(m, a, b, X_AB, ia, ib, na, nb, &first, &second);
+    stack_a[top] = second.a; stack_b[top] = second.b; ++top;
+    stack_a[top] = first.a;  stack_b[top] = first.b;  ++top;
   }
   return false;
 }

@@ -872,6 +872,19 @@ def shortcut(ck, sp, p, rng, tries=200, res=0.01):
     return p
 
 
+def repair(ck, sp, p, rng, res=0.01):
+    """Re-plans (at `res` steps) each segment that touches at `res` steps."""
+    out = [p[0]]
+    for a, b in zip(p, p[1:]):
+        if not edge_free(ck, sp, a, b, res):
+            sub_path, _ = rrt_connect(ck, sp, a, b, rng, res=res, max_nodes=5000)
+            if sub_path is None:
+                return None
+            out += sub_path[1:-1]
+        out.append(b)
+    return out
+
+
 def witness(robot, env, checked, failures):
     """RRT-Connect from start to goal of each scene, in stages where the scene says so
     (generate.WITNESS_VIA: intermediate configurations and the joints that move to reach
@@ -898,6 +911,10 @@ def witness(robot, env, checked, failures):
                 ok = False
                 break
             p = shortcut(ck, sp, p, rng)
+            p = repair(ck, sp, p, rng)
+            if p is None:
+                ok = False
+                break
             for v in p[1:]:
                 q, base = sp.split(v)
                 b = tuple(v[:3]) if sp.planar else None

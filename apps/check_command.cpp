@@ -3,8 +3,8 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <random>
@@ -15,8 +15,8 @@
 #include "gplanner/planner/checker_comparison.h"
 #include "gplanner/planner/checker_factory.h"
 #include "gplanner/planner/gpu_checker.h"
-#include "gplanner/planner/scene_collision_model.h"
 #include "gplanner/planner/scene.h"
+#include "gplanner/planner/scene_collision_model.h"
 
 namespace gplan {
 namespace {
@@ -44,25 +44,28 @@ std::string json_string(const std::string& text) {
   return out.str();
 }
 
-// Checks the batch in slices so that a long run shows how far it has come.
+// Checks the batch in slices so that a long run on the CPU shows how far it has come
+// (the GPU answers a whole batch faster than a progress line would be read, and
+// slicing would cost it parallelism).
 void check_with_progress(gplanner::CollisionChecker* checker, const std::vector<float>& q,
                          std::size_t n, std::size_t width, std::vector<std::uint8_t>* verdicts) {
-  const bool show = isatty(STDERR_FILENO) && n >= 20000;
+  const bool show = isatty(STDERR_FILENO) && n >= 20000 && checker->backend() != "gpu";
   const std::size_t slices = show ? 20 : 1;
   const std::size_t slice = (n + slices - 1) / slices;
   for (std::size_t begin = 0; begin < n; begin += slice) {
     const std::size_t count = std::min(slice, n - begin);
     checker->check(q.data() + begin * width, count, verdicts->data() + begin);
     if (show) {
-      std::cerr << "\rchecking: " << (100 * (begin + count) / n) << "% (" << begin + count
-                << " of " << n << ")" << std::flush;
+      std::cerr << "\rchecking: " << (100 * (begin + count) / n) << "% (" << begin + count << " of "
+                << n << ")" << std::flush;
     }
   }
   if (show) std::cerr << "\r" << std::string(40, ' ') << "\r";
 }
 
 // The checker for a --backend or --compare name, with its notice (a fallback) printed.
-std::unique_ptr<gplanner::CollisionChecker> make_checker(const gplanner::Scene& scene, const std::string& option,
+std::unique_ptr<gplanner::CollisionChecker> make_checker(const gplanner::Scene& scene,
+                                                         const std::string& option,
                                                          const std::string& backend,
                                                          const gplanner::CheckerOptions& options) {
   std::string notice;
@@ -88,8 +91,9 @@ std::string gpu_details(gplanner::CollisionChecker* checker) {
   const gplanner::GpuCheckStats& stats = gpu->last_stats();
   std::ostringstream out;
   out << gpu->device_name() << ", " << gplanner::traversal_name(gpu->traversal()) << " traversal, "
-      << std::setprecision(3) << stats.milliseconds << " ms on the GPU in " << stats.chunks << " chunk(s), "
-      << stats.bv_tests << " BV tests, " << stats.triangle_tests << " triangle tests";
+      << std::setprecision(3) << stats.milliseconds << " ms on the GPU in " << stats.chunks
+      << " chunk(s), " << stats.bv_tests << " BV tests, " << stats.triangle_tests
+      << " triangle tests";
   if (stats.rounds) out << ", " << stats.rounds << " rounds";
   return out.str();
 }
@@ -97,9 +101,10 @@ std::string gpu_details(gplanner::CollisionChecker* checker) {
 }  // namespace
 
 int run_check(int argc, char** argv) {
-  const CommandLine args(argc, argv, 2,
-                         {"n", "seed", "backend", "traversal", "compare", "threads", "memory-cap-mb", "out"},
-                         {"json"});
+  const CommandLine args(
+      argc, argv, 2,
+      {"n", "seed", "backend", "traversal", "compare", "threads", "memory-cap-mb", "out"},
+      {"json"});
   if (args.positionals().size() != 1) throw UsageError("gplan check takes one scene file");
   const std::string scene_file = args.positionals()[0];
   const std::size_t n = static_cast<std::size_t>(args.count("n", 10000));
@@ -111,7 +116,8 @@ int run_check(int argc, char** argv) {
   options.gpu.memory_cap_bytes = static_cast<std::size_t>(args.count("memory-cap-mb", 0)) << 20;
   if (args.has("traversal") &&
       !gplanner::parse_traversal(args.text("traversal", ""), &options.gpu.traversal)) {
-    throw UsageError("--traversal: '" + args.text("traversal", "") + "' is not one of basic, packet, balanced");
+    throw UsageError("--traversal: '" + args.text("traversal", "") +
+                     "' is not one of basic, packet, balanced");
   }
 
   // Refuse an output file that cannot be written before doing the work, not after.
@@ -133,7 +139,8 @@ int run_check(int argc, char** argv) {
   const auto pairs = scene.robot.checked_pairs();
   const double delta = gplanner::tolerance_delta(scene);
 
-  std::unique_ptr<gplanner::CollisionChecker> checker = make_checker(scene, "backend", backend, options);
+  std::unique_ptr<gplanner::CollisionChecker> checker =
+      make_checker(scene, "backend", backend, options);
   gplanner::check_start_and_goal(scene, checker.get());
   const double line_collision = gplanner::first_collision_on_straight_line(scene, checker.get());
 
@@ -155,20 +162,23 @@ int run_check(int argc, char** argv) {
             << gplanner::base_type_name(space.base) << " base, " << space.dof() << " DOF (" << width
             << " floats)\n"
             << "obstacles   " << scene.obstacles.size() << " (" << scene.obstacle_triangle_count()
-            << " triangles; " << scene.dropped_obstacle_triangles << " out of the robot's reach dropped)\n"
-            << "tolerance   delta = " << std::scientific << std::setprecision(2) << delta << std::fixed
-            << " m\n"
+            << " triangles; " << scene.dropped_obstacle_triangles
+            << " out of the robot's reach dropped)\n"
+            << "tolerance   delta = " << std::scientific << std::setprecision(2) << delta
+            << std::fixed << " m\n"
             << "backend     " << checker->backend() << "\n"
             << "start, goal free; straight line start -> goal ";
   if (line_collision >= 0) {
-    std::cout << "collides (first at " << std::setprecision(1) << 100 * line_collision << "% of the way)\n";
+    std::cout << "collides (first at " << std::setprecision(1) << 100 * line_collision
+              << "% of the way)\n";
   } else {
     std::cout << "is free\n";
   }
   std::cout << "checked     " << n << " configurations (seed " << seed << ")\n"
-            << "collisions  " << collisions << " (" << std::setprecision(2) << 100 * fraction << "%)\n"
-            << "time        " << std::setprecision(4) << check_s << " s, " << std::setprecision(0) << rate
-            << " queries/s\n";
+            << "collisions  " << collisions << " (" << std::setprecision(2) << 100 * fraction
+            << "%)\n"
+            << "time        " << std::setprecision(4) << check_s << " s, " << std::setprecision(0)
+            << rate << " queries/s\n";
   const std::string details = gpu_details(checker.get());
   if (!details.empty()) std::cout << "gpu         " << details << "\n";
 
@@ -178,16 +188,20 @@ int run_check(int argc, char** argv) {
   std::string compared_backend;
   double compare_s = 0;
   if (!compare.empty()) {
-    std::unique_ptr<gplanner::CollisionChecker> other = make_checker(scene, "compare", compare, options);
+    std::unique_ptr<gplanner::CollisionChecker> other =
+        make_checker(scene, "compare", compare, options);
     compared_backend = other->backend();
     std::vector<std::uint8_t> other_verdicts(n);
     compare_s = check_timed(other.get(), q, n, width, &other_verdicts);
     gplanner::FclChecker judge(scene, options.threads);
-    comparison = gplanner::compare_verdicts(q.data(), n, width, verdicts.data(), other_verdicts.data(), &judge, delta);
-    std::cout << "compare     " << checker->backend() << " vs " << compared_backend << " (" << std::setprecision(4)
-              << compare_s << " s, " << std::setprecision(1) << (check_s > 0 ? compare_s / check_s : 0.0)
-              << "x the time): " << comparison.disagreements << " disagreements: " << comparison.missed_collisions
-              << " missed collisions, " << comparison.extra_within_band << " extra within the band, "
+    comparison = gplanner::compare_verdicts(q.data(), n, width, verdicts.data(),
+                                            other_verdicts.data(), &judge, delta);
+    std::cout << "compare     " << checker->backend() << " vs " << compared_backend << " ("
+              << std::setprecision(4) << compare_s << " s, " << std::setprecision(1)
+              << (check_s > 0 ? compare_s / check_s : 0.0)
+              << "x the time): " << comparison.disagreements
+              << " disagreements: " << comparison.missed_collisions << " missed collisions, "
+              << comparison.extra_within_band << " extra within the band, "
               << comparison.extra_outside_band << " outside it";
     if (comparison.extra_within_band + comparison.extra_outside_band > 0) {
       std::cout << " (largest FCL distance " << std::scientific << std::setprecision(2)
@@ -210,25 +224,28 @@ int run_check(int argc, char** argv) {
   }
   if (args.flag("json")) {
     std::cout << std::setprecision(6) << "{\"scene\":" << json_string(scene_file)
-              << ",\"name\":" << json_string(scene.name) << ",\"backend\":" << json_string(checker->backend())
-              << ",\"n\":" << n << ",\"seed\":" << seed << ",\"dof\":" << space.dof() << ",\"width\":" << width
-              << ",\"links\":" << scene.robot.links.size() << ",\"robot_triangles\":" << scene.robot.triangle_count()
+              << ",\"name\":" << json_string(scene.name)
+              << ",\"backend\":" << json_string(checker->backend()) << ",\"n\":" << n
+              << ",\"seed\":" << seed << ",\"dof\":" << space.dof() << ",\"width\":" << width
+              << ",\"links\":" << scene.robot.links.size()
+              << ",\"robot_triangles\":" << scene.robot.triangle_count()
               << ",\"checked_pairs\":" << pairs.size()
               << ",\"obstacle_triangles\":" << scene.obstacle_triangle_count()
               << ",\"dropped_obstacle_triangles\":" << scene.dropped_obstacle_triangles
-              << ",\"delta\":" << std::scientific << delta << std::fixed << ",\"collisions\":" << collisions
-              << ",\"collision_fraction\":" << fraction << ",\"seconds\":" << check_s
-              << ",\"queries_per_second\":" << rate
+              << ",\"delta\":" << std::scientific << delta << std::fixed
+              << ",\"collisions\":" << collisions << ",\"collision_fraction\":" << fraction
+              << ",\"seconds\":" << check_s << ",\"queries_per_second\":" << rate
               << ",\"straight_line_collides\":" << (line_collision >= 0 ? "true" : "false");
     if (auto* gpu = dynamic_cast<gplanner::GpuChecker*>(checker.get())) {
       std::cout << ",\"traversal\":" << json_string(gplanner::traversal_name(gpu->traversal()))
-                << ",\"gpu_ms\":" << gpu->last_stats().milliseconds << ",\"bv_tests\":" << gpu->last_stats().bv_tests
+                << ",\"gpu_ms\":" << gpu->last_stats().milliseconds
+                << ",\"bv_tests\":" << gpu->last_stats().bv_tests
                 << ",\"triangle_tests\":" << gpu->last_stats().triangle_tests
                 << ",\"rounds\":" << gpu->last_stats().rounds;
     }
     if (!compare.empty()) {
-      std::cout << ",\"compare\":{\"backend\":" << json_string(compared_backend) << ",\"seconds\":" << compare_s
-                << ",\"disagreements\":" << comparison.disagreements
+      std::cout << ",\"compare\":{\"backend\":" << json_string(compared_backend)
+                << ",\"seconds\":" << compare_s << ",\"disagreements\":" << comparison.disagreements
                 << ",\"missed_collisions\":" << comparison.missed_collisions
                 << ",\"extra_within_band\":" << comparison.extra_within_band
                 << ",\"extra_outside_band\":" << comparison.extra_outside_band << "}";

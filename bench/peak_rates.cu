@@ -18,31 +18,35 @@ namespace {
 
 using namespace gplanner;
 
-constexpr int kPool = 64;        // distinct nodes / triangles in the pool (cache resident)
-constexpr int kRepeats = 256;    // tests per thread
+constexpr int kPool = 64;      // distinct nodes / triangles in the pool (cache resident)
+constexpr int kRepeats = 256;  // tests per thread
 
 __global__ void bv_kernel(const BvhNode* d_nodes, const detail::Xf* d_poses, int* d_hits) {
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
   const detail::Xf X = d_poses[t % kPool];
   int hits = 0;
   for (int r = 0; r < kRepeats; ++r) {
-    hits += detail::nodes_overlap(d_nodes[(t + r) % kPool], d_nodes[(t * 7 + 3 * r) % kPool], X, 1e-4f);
+    hits +=
+        detail::nodes_overlap(d_nodes[(t + r) % kPool], d_nodes[(t * 7 + 3 * r) % kPool], X, 1e-4f);
   }
   d_hits[t] = hits;
 }
 
-__global__ void triangle_kernel(const BvhTriangle* d_triangles, const detail::Xf* d_poses, int* d_hits) {
+__global__ void triangle_kernel(const BvhTriangle* d_triangles, const detail::Xf* d_poses,
+                                int* d_hits) {
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
   const detail::Xf X = d_poses[t % kPool];
   int hits = 0;
   for (int r = 0; r < kRepeats; ++r) {
-    hits += detail::leaf_collides(d_triangles[(t + r) % kPool], d_triangles[(t * 7 + 3 * r) % kPool], X, 1e-4f);
+    hits += detail::leaf_collides(d_triangles[(t + r) % kPool],
+                                  d_triangles[(t * 7 + 3 * r) % kPool], X, 1e-4f);
   }
   d_hits[t] = hits;
 }
 
 template <typename Kernel, typename Data>
-double rate(Kernel kernel, const Data* d_data, const detail::Xf* d_poses, int* d_hits, int threads) {
+double rate(Kernel kernel, const Data* d_data, const detail::Xf* d_poses, int* d_hits,
+            int threads) {
   const int block = 256, grid = threads / block;
   kernel<<<grid, block>>>(d_data, d_poses, d_hits);  // warm-up
   cudaEvent_t start, stop;
@@ -73,20 +77,23 @@ int main() {
   std::vector<BvhTriangle> triangles(kPool);
   std::vector<detail::Xf> poses(kPool);
   for (int i = 0; i < kPool; ++i) {
-    const geometry::Mat3<float> R = geometry::axis_angle(geometry::Vec3<float>{0.6f, 0.0f, 0.8f}, u(rng) * 6);
+    const geometry::Mat3<float> R =
+        geometry::axis_angle(geometry::Vec3<float>{0.6f, 0.0f, 0.8f}, u(rng) * 6);
     BvhNode& n = nodes[i];
     for (int k = 0; k < 3; ++k) {
       n.center[k] = u(rng);
       n.extent[k] = e(rng);
       for (int c = 0; c < 3; ++c) n.axes[3 * k + c] = R.r[k][c];
     }
-    n.radius = std::sqrt(n.extent[0] * n.extent[0] + n.extent[1] * n.extent[1] + n.extent[2] * n.extent[2]);
+    n.radius = std::sqrt(n.extent[0] * n.extent[0] + n.extent[1] * n.extent[1] +
+                         n.extent[2] * n.extent[2]);
     n.child = 0;
     for (int k = 0; k < 3; ++k) {
       for (int c = 0; c < 3; ++c) triangles[i].v[k][c] = u(rng);
       triangles[i].v[k][3] = 0;
     }
-    poses[i] = {geometry::axis_angle(geometry::Vec3<float>{0.0f, 1.0f, 0.0f}, u(rng)), {u(rng), u(rng), u(rng)}};
+    poses[i] = {geometry::axis_angle(geometry::Vec3<float>{0.0f, 1.0f, 0.0f}, u(rng)),
+                {u(rng), u(rng), u(rng)}};
   }
   BvhNode* d_nodes;
   BvhTriangle* d_triangles;
@@ -102,6 +109,7 @@ int main() {
   cudaMemcpy(d_poses, poses.data(), sizeof(detail::Xf) * kPool, cudaMemcpyHostToDevice);
   const double bv = rate(bv_kernel, d_nodes, d_poses, d_hits, threads);
   const double tri = rate(triangle_kernel, d_triangles, d_poses, d_hits, threads);
-  std::printf("{\"gpu\":\"%s\",\"bv_tests_per_s\":%.4g,\"triangle_tests_per_s\":%.4g}\n", properties.name, bv, tri);
+  std::printf("{\"gpu\":\"%s\",\"bv_tests_per_s\":%.4g,\"triangle_tests_per_s\":%.4g}\n",
+              properties.name, bv, tri);
   return 0;
 }

@@ -20,8 +20,8 @@ std::string project_root() {
 
 std::string shared_data() {
   const char* data = std::getenv("GPLANNER_SHARED_DATA");
-  const fs::path folder = data && *data ? fs::path(data)
-                                        : fs::path(project_root()) / ".." / "shared" / "data";
+  const fs::path folder =
+      data && *data ? fs::path(data) : fs::path(project_root()) / ".." / "shared" / "data";
   return fs::is_directory(folder) ? fs::canonical(folder).string() : std::string();
 }
 
@@ -52,7 +52,8 @@ CommandResult run_gplan(const std::string& arguments) {
   if (pipe == nullptr) return result;
   std::array<char, 4096> buffer;
   std::size_t got = 0;
-  while ((got = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), got);
+  while ((got = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    result.output.append(buffer.data(), got);
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;

@@ -16,8 +16,8 @@ struct BuildTask {
 
 // Principal axes of the vertices of triangles order[begin, end), as a right-handed
 // rotation whose first column is the axis of largest spread.
-Eigen::Matrix3d principal_axes(const std::vector<Eigen::Vector3d>& corners, const std::vector<int>& order,
-                               int begin, int end) {
+Eigen::Matrix3d principal_axes(const std::vector<Eigen::Vector3d>& corners,
+                               const std::vector<int>& order, int begin, int end) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (int i = begin; i < end; ++i) {
     for (int k = 0; k < 3; ++k) mean += corners[3 * order[i] + k];
@@ -56,7 +56,8 @@ void fit_node(const std::vector<Eigen::Vector3d>& corners, const std::vector<int
   const Eigen::Vector3d extent = (hi - lo) / 2;
   // float rounding of centre, axes and extents: grow the box by a few ulps of its size
   // and position so that it still contains every vertex.
-  const double slack = 8 * std::numeric_limits<float>::epsilon() * (center.norm() + extent.norm()) + 1e-30;
+  const double slack =
+      8 * std::numeric_limits<float>::epsilon() * (center.norm() + extent.norm()) + 1e-30;
   for (int k = 0; k < 3; ++k) {
     node->center[k] = static_cast<float>(center[k]);
     node->extent[k] = static_cast<float>(extent[k] + slack);
@@ -75,7 +76,8 @@ Bvh build_bvh(const double* vertices, int vertex_count, const int* triangles, in
   for (int t = 0; t < triangle_count; ++t) {
     for (int k = 0; k < 3; ++k) {
       const int v = triangles[3 * t + k];
-      corners[3 * t + k] = Eigen::Vector3d(vertices[3 * v], vertices[3 * v + 1], vertices[3 * v + 2]);
+      corners[3 * t + k] =
+          Eigen::Vector3d(vertices[3 * v], vertices[3 * v + 1], vertices[3 * v + 2]);
     }
     centroids[t] = (corners[3 * t] + corners[3 * t + 1] + corners[3 * t + 2]) / 3;
   }

@@ -40,7 +40,8 @@ class DeviceBuffer {
   void upload(const std::vector<T>& host) {
     reserve(host.size());
     if (!host.empty()) {
-      check_cuda(cudaMemcpy(data_, host.data(), host.size() * sizeof(T), cudaMemcpyHostToDevice), "upload");
+      check_cuda(cudaMemcpy(data_, host.data(), host.size() * sizeof(T), cudaMemcpyHostToDevice),
+                 "upload");
     }
   }
   T* get() const { return data_; }
@@ -59,10 +60,10 @@ class DeviceBuffer {
 struct Counters {
   unsigned long long bv_tests;
   unsigned long long triangle_tests;
-  unsigned int jobs;          // balanced: jobs emitted
+  unsigned int jobs;  // balanced: jobs emitted
   unsigned int jobs_overflow;
-  unsigned int tasks;         // balanced: children emitted by the last task launch
-  unsigned int leaves;        // balanced: leaf pairs emitted by the last task launch
+  unsigned int tasks;   // balanced: children emitted by the last task launch
+  unsigned int leaves;  // balanced: leaf pairs emitted by the last task launch
 };
 
 constexpr unsigned kFullMask = 0xffffffffu;
@@ -82,13 +83,15 @@ __device__ void add_counts(const detail::TraversalCounts& counts, Counters* d_co
 
 // ---------------------------------------------------------------- basic
 
-__global__ void basic_kernel(CollisionModelView m, const float* d_q, int n, std::uint8_t* d_verdicts,
-                             Counters* d_counters) {
+__global__ void basic_kernel(CollisionModelView m, const float* d_q, int n,
+                             std::uint8_t* d_verdicts, Counters* d_counters) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   detail::TraversalCounts counts;
   if (i < n) {
     detail::Xf X_WL[detail::kMaxLinks];
-    d_verdicts[i] = detail::query_collides(m, d_q + static_cast<std::size_t>(i) * m.width, X_WL, &counts) ? 1 : 0;
+    d_verdicts[i] =
+        detail::query_collides(m, d_q + static_cast<std::size_t>(i) * m.width, X_WL, &counts) ? 1
+                                                                                              : 0;
   }
   add_counts(counts, d_counters);
 }
@@ -96,8 +99,8 @@ __global__ void basic_kernel(CollisionModelView m, const float* d_q, int n, std:
 // ---------------------------------------------------------------- packet
 
 // k-means on configurations: assign every query to its nearest centre.
-__global__ void kmeans_assign_kernel(const float* d_q, int n, int width, const float* d_centres, int k,
-                                     unsigned* d_labels) {
+__global__ void kmeans_assign_kernel(const float* d_q, int n, int width, const float* d_centres,
+                                     int k, unsigned* d_labels) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   const float* q = d_q + static_cast<std::size_t>(i) * width;
@@ -117,17 +120,19 @@ __global__ void kmeans_assign_kernel(const float* d_q, int n, int width, const f
   d_labels[i] = label;
 }
 
-__global__ void kmeans_accumulate_kernel(const float* d_q, int n, int width, const unsigned* d_labels,
-                                         float* d_sums, unsigned* d_counts) {
+__global__ void kmeans_accumulate_kernel(const float* d_q, int n, int width,
+                                         const unsigned* d_labels, float* d_sums,
+                                         unsigned* d_counts) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   const unsigned c = d_labels[i];
-  for (int j = 0; j < width; ++j) atomicAdd(&d_sums[c * width + j], d_q[static_cast<std::size_t>(i) * width + j]);
+  for (int j = 0; j < width; ++j)
+    atomicAdd(&d_sums[c * width + j], d_q[static_cast<std::size_t>(i) * width + j]);
   atomicAdd(&d_counts[c], 1u);
 }
 
-__global__ void kmeans_update_kernel(float* d_centres, const float* d_sums, const unsigned* d_counts, int k,
-                                     int width) {
+__global__ void kmeans_update_kernel(float* d_centres, const float* d_sums,
+                                     const unsigned* d_counts, int k, int width) {
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
   if (t >= k * width) return;
   const unsigned count = d_counts[t / width];
@@ -157,14 +162,15 @@ struct PacketEntry {
 // One warp walks the BVTT of bodies A and B for its 32 queries together, on one shared
 // stack, each entry carrying the lanes that overlap it. Children are tested when their
 // parent is expanded; the pair more lanes overlap is visited first.
-__device__ void packet_traverse(const CollisionModelView& m, BodyRange a, BodyRange b, const detail::Xf& X_AB,
-                                unsigned active, PacketEntry* stack, bool* collided,
-                                detail::TraversalCounts* counts) {
+__device__ void packet_traverse(const CollisionModelView& m, BodyRange a, BodyRange b,
+                                const detail::Xf& X_AB, unsigned active, PacketEntry* stack,
+                                bool* collided, detail::TraversalCounts* counts) {
   const unsigned lane = threadIdx.x & 31;
   const bool mine = (active >> lane) & 1u;
   auto overlaps = [&](int ia, int ib) {
     if (counts) ++counts->bv_tests;
-    return detail::nodes_overlap(m.nodes[a.node_offset + ia], m.nodes[b.node_offset + ib], X_AB, m.margin);
+    return detail::nodes_overlap(m.nodes[a.node_offset + ia], m.nodes[b.node_offset + ib], X_AB,
+                                 m.margin);
   };
   const unsigned root = __ballot_sync(kFullMask, mine && overlaps(0, 0));
   if (root == 0) return;
@@ -186,7 +192,8 @@ __device__ void packet_traverse(const CollisionModelView& m, BodyRange a, BodyRa
       if (in) {
         if (counts) ++counts->triangle_tests;
         if (detail::leaf_collides(m.triangles[a.triangle_offset + na.triangle()],
-                                  m.triangles[b.triangle_offset + nb.triangle()], X_AB, m.threshold)) {
+                                  m.triangles[b.triangle_offset + nb.triangle()], X_AB,
+                                  m.threshold)) {
           *collided = true;
         }
       }
@@ -215,8 +222,9 @@ __device__ void packet_traverse(const CollisionModelView& m, BodyRange a, BodyRa
   }
 }
 
-__global__ void packet_kernel(CollisionModelView m, const float* d_q, int n, const unsigned* d_order,
-                              std::uint8_t* d_verdicts, Counters* d_counters) {
+__global__ void packet_kernel(CollisionModelView m, const float* d_q, int n,
+                              const unsigned* d_order, std::uint8_t* d_verdicts,
+                              Counters* d_counters) {
   __shared__ PacketEntry stacks[kPacketWarpsPerBlock][detail::kStackSize];
   const int warp = threadIdx.x / 32;
   const int index = (blockIdx.x * kPacketWarpsPerBlock + warp) * 32 + (threadIdx.x & 31);
@@ -279,8 +287,8 @@ __device__ void store_transform(const detail::Xf& X, float* out) {
 
 // Kinematics and broad phase per query; every surviving body pair becomes a job with
 // one root task.
-__global__ void balanced_roots_kernel(CollisionModelView m, const float* d_q, int n, Job* d_jobs, int job_capacity,
-                                      Task* d_tasks, Counters* d_counters) {
+__global__ void balanced_roots_kernel(CollisionModelView m, const float* d_q, int n, Job* d_jobs,
+                                      int job_capacity, Task* d_tasks, Counters* d_counters) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   detail::Xf X_WL[detail::kMaxLinks];
@@ -300,7 +308,8 @@ __global__ void balanced_roots_kernel(CollisionModelView m, const float* d_q, in
     d_tasks[slot] = {static_cast<int>(slot), 0, 0};
   };
   for (int l = 0; l < m.link_count; ++l) {
-    if (detail::link_may_touch_environment(m, l, X_WL[l])) emit(m.environment, m.link_bodies[l], X_WL[l]);
+    if (detail::link_may_touch_environment(m, l, X_WL[l]))
+      emit(m.environment, m.link_bodies[l], X_WL[l]);
   }
   for (int p = 0; p < m.pair_count; ++p) {
     if (detail::pair_may_touch(m, p, X_WL)) {
@@ -322,8 +331,9 @@ constexpr int kTaskSteps = 32;
 // its registers, cut the threads that fit); the node pairs left on the stack become
 // new tasks in d_children (one atomic per warp).
 __global__ void __launch_bounds__(256, 4)
-balanced_task_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_tasks, int count, Task* d_children,
-                     Task* d_leaves, unsigned leaf_capacity, const std::uint8_t* d_collided, Counters* d_counters) {
+    balanced_task_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_tasks, int count,
+                         Task* d_children, Task* d_leaves, unsigned leaf_capacity,
+                         const std::uint8_t* d_collided, Counters* d_counters) {
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
   detail::TraversalCounts counts;
   // Each step pops one pair and pushes at most two: kTaskSteps + 1 entries suffice.
@@ -362,8 +372,12 @@ balanced_task_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_task
         }
         detail::NodePair first, second;
         detail::split_pair(m, job.a, job.b, X_AB, ia, ib, na, nb, &first, &second);
-        stack_a[top] = second.a; stack_b[top] = second.b; ++top;
-        stack_a[top] = first.a;  stack_b[top] = first.b;  ++top;
+        stack_a[top] = second.a;
+        stack_b[top] = second.b;
+        ++top;
+        stack_a[top] = first.a;
+        stack_b[top] = first.b;
+        ++top;
       }
     }
   }
@@ -384,8 +398,8 @@ balanced_task_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_task
 }
 
 // One leaf pair per thread: the triangle test, marking the query when it collides.
-__global__ void balanced_leaf_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_leaves, int count,
-                                     std::uint8_t* d_collided, Counters* d_counters) {
+__global__ void balanced_leaf_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_leaves,
+                                     int count, std::uint8_t* d_collided, Counters* d_counters) {
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
   detail::TraversalCounts counts;
   if (t < count) {
@@ -393,7 +407,8 @@ __global__ void balanced_leaf_kernel(CollisionModelView m, const Job* d_jobs, co
     const Job& job = d_jobs[leaf.job];
     if (!d_collided[job.query]) {
       ++counts.triangle_tests;
-      if (detail::leaf_collides(m.triangles[job.a.triangle_offset + leaf.a], m.triangles[job.b.triangle_offset + leaf.b],
+      if (detail::leaf_collides(m.triangles[job.a.triangle_offset + leaf.a],
+                                m.triangles[job.b.triangle_offset + leaf.b],
                                 detail::load_transform(job.X_AB), m.threshold)) {
         d_collided[job.query] = 1;
       }
@@ -475,7 +490,8 @@ struct GpuBatchChecker::Impl {
   }
 
   void run_basic(int n) {
-    basic_kernel<<<blocks_for(n, 128), 128>>>(view, configurations.get(), n, verdicts.get(), counters.get());
+    basic_kernel<<<blocks_for(n, 128), 128>>>(view, configurations.get(), n, verdicts.get(),
+                                              counters.get());
     check_cuda(cudaGetLastError(), "basic kernel");
   }
 
@@ -489,25 +505,30 @@ struct GpuBatchChecker::Impl {
     centres.reserve(static_cast<std::size_t>(k) * width);
     sums.reserve(static_cast<std::size_t>(k) * width);
     cluster_counts.reserve(k);
-    kmeans_init_kernel<<<blocks_for(k * width, 256), 256>>>(configurations.get(), n, width, centres.get(), k);
+    kmeans_init_kernel<<<blocks_for(k * width, 256), 256>>>(configurations.get(), n, width,
+                                                            centres.get(), k);
     for (int iteration = 0; iteration < 4; ++iteration) {
-      kmeans_assign_kernel<<<blocks_for(n, 256), 256>>>(configurations.get(), n, width, centres.get(), k, labels.get());
+      kmeans_assign_kernel<<<blocks_for(n, 256), 256>>>(configurations.get(), n, width,
+                                                        centres.get(), k, labels.get());
       check_cuda(cudaMemset(sums.get(), 0, sizeof(float) * k * width), "memset");
       check_cuda(cudaMemset(cluster_counts.get(), 0, sizeof(unsigned) * k), "memset");
-      kmeans_accumulate_kernel<<<blocks_for(n, 256), 256>>>(configurations.get(), n, width, labels.get(), sums.get(),
-                                                          cluster_counts.get());
-      kmeans_update_kernel<<<blocks_for(k * width, 256), 256>>>(centres.get(), sums.get(), cluster_counts.get(), k, width);
+      kmeans_accumulate_kernel<<<blocks_for(n, 256), 256>>>(
+          configurations.get(), n, width, labels.get(), sums.get(), cluster_counts.get());
+      kmeans_update_kernel<<<blocks_for(k * width, 256), 256>>>(centres.get(), sums.get(),
+                                                                cluster_counts.get(), k, width);
     }
-    kmeans_assign_kernel<<<blocks_for(n, 256), 256>>>(configurations.get(), n, width, centres.get(), k, labels.get());
+    kmeans_assign_kernel<<<blocks_for(n, 256), 256>>>(configurations.get(), n, width, centres.get(),
+                                                      k, labels.get());
     iota_kernel<<<blocks_for(n, 256), 256>>>(identity.get(), n);
     int bits = 1;
     while ((1 << bits) < k) ++bits;
     std::size_t scratch_bytes = 0;
-    cub::DeviceRadixSort::SortPairs(nullptr, scratch_bytes, labels.get(), sorted_labels.get(), identity.get(),
-                                    order.get(), n, 0, bits);
+    cub::DeviceRadixSort::SortPairs(nullptr, scratch_bytes, labels.get(), sorted_labels.get(),
+                                    identity.get(), order.get(), n, 0, bits);
     sort_scratch.reserve(scratch_bytes);
-    check_cuda(cub::DeviceRadixSort::SortPairs(sort_scratch.get(), scratch_bytes, labels.get(), sorted_labels.get(),
-                                               identity.get(), order.get(), n, 0, bits),
+    check_cuda(cub::DeviceRadixSort::SortPairs(sort_scratch.get(), scratch_bytes, labels.get(),
+                                               sorted_labels.get(), identity.get(), order.get(), n,
+                                               0, bits),
                "sort");
     const int packets = (n + 31) / 32;
     packet_kernel<<<blocks_for(packets, kPacketWarpsPerBlock), 32 * kPacketWarpsPerBlock>>>(
@@ -516,37 +537,44 @@ struct GpuBatchChecker::Impl {
   }
 
   // Returns false when the chunk emitted more jobs than fit: run it again, smaller.
-  bool run_balanced(int n, std::size_t job_capacity, std::size_t task_capacity, std::size_t children_capacity,
-                    std::size_t leaf_capacity) {
+  bool run_balanced(int n, std::size_t job_capacity, std::size_t task_capacity,
+                    std::size_t children_capacity, std::size_t leaf_capacity) {
     check_cuda(cudaMemset(verdicts.get(), 0, n), "memset");
     balanced_roots_kernel<<<blocks_for(n, 128), 128>>>(view, configurations.get(), n, jobs.get(),
-                                                       static_cast<int>(job_capacity), tasks.get(), counters.get());
+                                                       static_cast<int>(job_capacity), tasks.get(),
+                                                       counters.get());
     check_cuda(cudaGetLastError(), "balanced roots kernel");
     Counters c = read_counters();
     if (c.jobs_overflow) return false;
     std::size_t top = c.jobs;
     // Each task may leave up to kTaskSteps + 1 node pairs behind.
-    const std::size_t max_launch = std::min<std::size_t>(1u << 20, children_capacity / (kTaskSteps + 1));
+    const std::size_t max_launch =
+        std::min<std::size_t>(1u << 20, children_capacity / (kTaskSteps + 1));
     while (top > 0) {
       // After the launch, top - launch + (up to kTaskSteps + 1 per task) must still fit.
       const std::size_t room = (task_capacity - top) / kTaskSteps;
       const std::size_t launch = std::min({top, room, max_launch});
-      if (launch == 0) throw std::runtime_error("balanced traversal: task queue full; lower the batch size");
-      check_cuda(cudaMemset(&counters.get()->tasks, 0, 2 * sizeof(unsigned)), "memset");  // tasks, leaves
+      if (launch == 0)
+        throw std::runtime_error("balanced traversal: task queue full; lower the batch size");
+      check_cuda(cudaMemset(&counters.get()->tasks, 0, 2 * sizeof(unsigned)),
+                 "memset");  // tasks, leaves
       const std::size_t begin = top - launch;
       balanced_task_kernel<<<blocks_for(launch, 256), 256>>>(
-          view, jobs.get(), tasks.get() + begin, static_cast<int>(launch), children.get(), leaves.get(),
-          static_cast<unsigned>(leaf_capacity), verdicts.get(), counters.get());
+          view, jobs.get(), tasks.get() + begin, static_cast<int>(launch), children.get(),
+          leaves.get(), static_cast<unsigned>(leaf_capacity), verdicts.get(), counters.get());
       check_cuda(cudaGetLastError(), "balanced task kernel");
       ++stats.rounds;
       unsigned emitted[2] = {0, 0};  // tasks, leaves
-      check_cuda(cudaMemcpy(emitted, &counters.get()->tasks, sizeof(emitted), cudaMemcpyDeviceToHost), "read");
+      check_cuda(
+          cudaMemcpy(emitted, &counters.get()->tasks, sizeof(emitted), cudaMemcpyDeviceToHost),
+          "read");
       const unsigned spawned = emitted[0];
-      const unsigned leaf_count = std::min<unsigned>(emitted[1], static_cast<unsigned>(leaf_capacity));
+      const unsigned leaf_count =
+          std::min<unsigned>(emitted[1], static_cast<unsigned>(leaf_capacity));
       if (leaf_count) {
         balanced_leaf_kernel<<<blocks_for(leaf_count, 256), 256>>>(view, jobs.get(), leaves.get(),
-                                                                   static_cast<int>(leaf_count), verdicts.get(),
-                                                                   counters.get());
+                                                                   static_cast<int>(leaf_count),
+                                                                   verdicts.get(), counters.get());
         check_cuda(cudaGetLastError(), "balanced leaf kernel");
       }
       if (spawned) {
@@ -564,20 +592,24 @@ struct GpuBatchChecker::Impl {
     if (n == 0) return;
     const std::size_t width = view.width;
     const std::size_t per_query = width * sizeof(float) + 1 + 4 * sizeof(unsigned);
-    std::size_t chunk = chunk_size(n, per_query, options.traversal == Traversal::kBalanced ? 0.1 : 0.9);
+    std::size_t chunk =
+        chunk_size(n, per_query, options.traversal == Traversal::kBalanced ? 0.1 : 0.9);
     std::size_t job_capacity = 0, task_capacity = 0, children_capacity = 0, leaf_capacity = 0;
     if (options.traversal == Traversal::kBalanced) {
       const std::size_t bodies = static_cast<std::size_t>(view.link_count) + view.pair_count;
-      job_capacity = std::min(chunk * bodies, static_cast<std::size_t>(0.3 * memory_cap) / sizeof(Job));
-      task_capacity = std::max<std::size_t>(2 * job_capacity + 4 * (kTaskSteps + 1),
-                                            static_cast<std::size_t>(0.25 * memory_cap) / sizeof(Task));
+      job_capacity =
+          std::min(chunk * bodies, static_cast<std::size_t>(0.3 * memory_cap) / sizeof(Job));
+      task_capacity =
+          std::max<std::size_t>(2 * job_capacity + 4 * (kTaskSteps + 1),
+                                static_cast<std::size_t>(0.25 * memory_cap) / sizeof(Task));
       task_capacity = std::min<std::size_t>(task_capacity, 1u << 30);
       jobs.reserve(job_capacity);
       tasks.reserve(task_capacity);
       children_capacity = std::min<std::size_t>(task_capacity, std::size_t(kTaskSteps + 1) << 20);
       children.reserve(children_capacity);
-      leaf_capacity = std::max<std::size_t>(1024, std::min<std::size_t>(std::size_t(1) << 22,
-                                                                       static_cast<std::size_t>(0.05 * memory_cap) / sizeof(Task)));
+      leaf_capacity = std::max<std::size_t>(
+          1024, std::min<std::size_t>(std::size_t(1) << 22,
+                                      static_cast<std::size_t>(0.05 * memory_cap) / sizeof(Task)));
       leaves.reserve(leaf_capacity);
     }
     configurations.reserve(chunk * width);
@@ -603,14 +635,17 @@ struct GpuBatchChecker::Impl {
         Counters before = read_counters();
         before.jobs = 0;
         before.jobs_overflow = 0;
-        check_cuda(cudaMemcpy(counters.get(), &before, sizeof(before), cudaMemcpyHostToDevice), "counters");
+        check_cuda(cudaMemcpy(counters.get(), &before, sizeof(before), cudaMemcpyHostToDevice),
+                   "counters");
         if (!run_balanced(m, job_capacity, task_capacity, children_capacity, leaf_capacity)) {
-          if (chunk == 1) throw std::runtime_error("balanced traversal: one query needs more jobs than fit");
+          if (chunk == 1)
+            throw std::runtime_error("balanced traversal: one query needs more jobs than fit");
           chunk = std::max<std::size_t>(1, chunk / 2);
           continue;  // the same queries again, fewer at a time
         }
       }
-      check_cuda(cudaMemcpy(h_verdicts + done, verdicts.get(), count, cudaMemcpyDeviceToHost), "download verdicts");
+      check_cuda(cudaMemcpy(h_verdicts + done, verdicts.get(), count, cudaMemcpyDeviceToHost),
+                 "download verdicts");
       done += count;
       ++stats.chunks;
     }

@@ -10,7 +10,8 @@
 namespace gplanner {
 namespace {
 
-BodyRange append_body(const Bvh& bvh, std::vector<BvhNode>* nodes, std::vector<BvhTriangle>* triangles) {
+BodyRange append_body(const Bvh& bvh, std::vector<BvhNode>* nodes,
+                      std::vector<BvhTriangle>* triangles) {
   BodyRange range;
   if (bvh.empty()) return range;
   range.node_offset = static_cast<std::int32_t>(nodes->size());
@@ -45,12 +46,17 @@ int bvh_depth(const Bvh& bvh) {
 }
 
 FlatCollisionModel::FlatCollisionModel(const CollisionModel& model)
-    : base(model.base), width(model.width), threshold(model.threshold), links(model.links),
-      pair_a(model.pair_a), pair_b(model.pair_b) {
+    : base(model.base),
+      width(model.width),
+      threshold(model.threshold),
+      links(model.links),
+      pair_a(model.pair_a),
+      pair_b(model.pair_b) {
   std::memcpy(X_WB, model.X_WB, sizeof(X_WB));
   if (links.empty() || static_cast<int>(links.size()) > detail::kMaxLinks) {
-    throw std::invalid_argument("a collision model needs 1 to " + std::to_string(detail::kMaxLinks) +
-                                " links, not " + std::to_string(links.size()));
+    throw std::invalid_argument("a collision model needs 1 to " +
+                                std::to_string(detail::kMaxLinks) + " links, not " +
+                                std::to_string(links.size()));
   }
   if (model.link_bvhs.size() != links.size()) {
     throw std::invalid_argument("a collision model needs one BVH (possibly empty) per link");
@@ -58,7 +64,8 @@ FlatCollisionModel::FlatCollisionModel(const CollisionModel& model)
   int deepest_link = 0;
   for (const Bvh& bvh : model.link_bvhs) {
     link_bodies.push_back(append_body(bvh, &nodes, &triangles));
-    link_spheres.push_back({{bvh.sphere_center[0], bvh.sphere_center[1], bvh.sphere_center[2]}, bvh.sphere_radius});
+    link_spheres.push_back(
+        {{bvh.sphere_center[0], bvh.sphere_center[1], bvh.sphere_center[2]}, bvh.sphere_radius});
     deepest_link = std::max(deepest_link, bvh_depth(bvh));
   }
   environment = append_body(model.environment, &nodes, &triangles);

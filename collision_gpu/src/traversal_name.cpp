@@ -4,9 +4,12 @@ namespace gplanner {
 
 const char* traversal_name(Traversal traversal) {
   switch (traversal) {
-    case Traversal::kBasic: return "basic";
-    case Traversal::kPacket: return "packet";
-    case Traversal::kBalanced: return "balanced";
+    case Traversal::kBasic:
+      return "basic";
+    case Traversal::kPacket:
+      return "packet";
+    case Traversal::kBalanced:
+      return "balanced";
   }
   return "unknown";
 }

@@ -21,12 +21,12 @@ void write_file_atomically(const std::string& path,
     throw std::runtime_error("folder " + folder.string() + " does not exist");
   }
   const std::string temporary =
-      (folder / ("." + target.filename().string() + ".tmp." + std::to_string(getpid())))
-          .string();
+      (folder / ("." + target.filename().string() + ".tmp." + std::to_string(getpid()))).string();
   try {
     {
       std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-      if (!out) throw std::runtime_error("cannot create " + temporary + ": " + std::strerror(errno));
+      if (!out)
+        throw std::runtime_error("cannot create " + temporary + ": " + std::strerror(errno));
       write(out);
       out.flush();
       if (!out) throw std::runtime_error("writing " + temporary + " failed (disk full?)");

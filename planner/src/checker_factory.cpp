@@ -2,8 +2,8 @@
 
 #include <stdexcept>
 
-#include "gplanner/planner/cpu_checker.h"
 #include "gplanner/collision_gpu/gpu_device.h"
+#include "gplanner/planner/cpu_checker.h"
 #include "gplanner/planner/fcl_checker.h"
 #include "gplanner/planner/gpu_checker.h"
 

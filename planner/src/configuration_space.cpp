@@ -10,9 +10,12 @@ constexpr double kPi = 3.14159265358979323846;
 
 const char* base_type_name(BaseType type) {
   switch (type) {
-    case BaseType::kFixed: return "fixed";
-    case BaseType::kPlanar: return "planar";
-    case BaseType::kFloating: return "floating";
+    case BaseType::kFixed:
+      return "fixed";
+    case BaseType::kPlanar:
+      return "planar";
+    case BaseType::kFloating:
+      return "floating";
   }
   return "unknown";
 }
@@ -25,9 +28,12 @@ double wrap_angle(double angle) {
 
 int ConfigurationSpace::base_width() const {
   switch (base) {
-    case BaseType::kFixed: return 0;
-    case BaseType::kPlanar: return 3;
-    case BaseType::kFloating: return 7;
+    case BaseType::kFixed:
+      return 0;
+    case BaseType::kPlanar:
+      return 3;
+    case BaseType::kFloating:
+      return 7;
   }
   return 0;
 }

@@ -15,8 +15,10 @@ struct CpuChecker::Impl {
   std::vector<detail::TraversalCounts> counts;  // per thread
 
   Impl(const Scene& scene, int requested)
-      : model(build_collision_model(scene)), view(model.view()),
-        threads(resolve_thread_count(requested)), counts(threads) {}
+      : model(build_collision_model(scene)),
+        view(model.view()),
+        threads(resolve_thread_count(requested)),
+        counts(threads) {}
 };
 
 CpuChecker::CpuChecker(const Scene& scene, int threads)
@@ -31,7 +33,10 @@ void CpuChecker::check(const float* configurations, std::size_t n, std::uint8_t*
   parallel_for(n, impl.threads, [&](std::size_t begin, std::size_t end, int thread) {
     detail::Xf X_WL[detail::kMaxLinks];
     for (std::size_t i = begin; i < end; ++i) {
-      verdicts[i] = detail::query_collides(impl.view, configurations + i * width, X_WL, &impl.counts[thread]) ? 1 : 0;
+      verdicts[i] =
+          detail::query_collides(impl.view, configurations + i * width, X_WL, &impl.counts[thread])
+              ? 1
+              : 0;
     }
   });
 }

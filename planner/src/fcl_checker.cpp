@@ -141,12 +141,15 @@ void FclChecker::check(const float* configurations, std::size_t n, std::uint8_t*
 
 void FclChecker::distance(const float* configurations, std::size_t n, double* distances) {
   const std::size_t width = impl_->scene.space.width();
-  parallel_for(n, impl_->threads, [&](std::size_t begin, std::size_t end, int thread) {
-    Workspace& w = impl_->workspaces[thread];
-    for (std::size_t i = begin; i < end; ++i) {
-      distances[i] = impl_->distance(configurations + i * width, &w);
-    }
-  }, 1);
+  parallel_for(
+      n, impl_->threads,
+      [&](std::size_t begin, std::size_t end, int thread) {
+        Workspace& w = impl_->workspaces[thread];
+        for (std::size_t i = begin; i < end; ++i) {
+          distances[i] = impl_->distance(configurations + i * width, &w);
+        }
+      },
+      1);
 }
 
 }  // namespace gplanner

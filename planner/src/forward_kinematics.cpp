@@ -19,7 +19,8 @@ void forward_kinematics(const RobotModel& robot, const Eigen::Isometry3d& X_WR,
   // Links are in topological order, so every parent pose is ready before its children.
   for (std::size_t l = 1; l < robot.links.size(); ++l) {
     const Joint& joint = robot.joints[robot.links[l].parent_joint];
-    (*X_WL)[l] = (*X_WL)[joint.parent_link] * joint_transform(joint, positions[robot.links[l].parent_joint]);
+    (*X_WL)[l] =
+        (*X_WL)[joint.parent_link] * joint_transform(joint, positions[robot.links[l].parent_joint]);
   }
 }
 

@@ -15,8 +15,8 @@ namespace {
 
 Eigen::Matrix4d to_eigen(const aiMatrix4x4& m) {
   Eigen::Matrix4d out;
-  out << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2,
-      m.d3, m.d4;
+  out << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3,
+      m.d4;
   return out;
 }
 
@@ -86,15 +86,17 @@ TriangleMesh load_mesh(const std::string& path, const Eigen::Vector3d& scale,
   // COLLADA files say which axis is up; ROS meshes are z-up whatever they declare, and
   // assimp would otherwise rotate them to y-up.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(
       path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (scene == nullptr || scene->mRootNode == nullptr) {
     const std::string error = importer.GetErrorString();
     // SortByPType removes points and lines; a file holding nothing else is left empty.
     if (error.find("No meshes remaining") != std::string::npos) {
-      throw InputError(referenced_from, what + " has no triangles (only points or lines); give a "
-                                               "mesh with at least one face");
+      throw InputError(referenced_from, what +
+                                            " has no triangles (only points or lines); give a "
+                                            "mesh with at least one face");
     }
     throw InputError(referenced_from, what + " cannot be read: " + error);
   }

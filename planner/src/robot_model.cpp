@@ -7,12 +7,18 @@ namespace gplanner {
 
 const char* joint_type_name(JointType type) {
   switch (type) {
-    case JointType::kFixed: return "fixed";
-    case JointType::kRevolute: return "revolute";
-    case JointType::kContinuous: return "continuous";
-    case JointType::kPrismatic: return "prismatic";
-    case JointType::kFloating: return "floating";
-    case JointType::kPlanar: return "planar";
+    case JointType::kFixed:
+      return "fixed";
+    case JointType::kRevolute:
+      return "revolute";
+    case JointType::kContinuous:
+      return "continuous";
+    case JointType::kPrismatic:
+      return "prismatic";
+    case JointType::kFloating:
+      return "floating";
+    case JointType::kPlanar:
+      return "planar";
   }
   return "unknown";
 }

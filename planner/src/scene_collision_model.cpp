@@ -16,10 +16,12 @@ void store_transform(const Eigen::Isometry3d& X, float* out) {
 Bvh mesh_bvh(const TriangleMesh& mesh) {
   std::vector<double> vertices;
   vertices.reserve(3 * mesh.vertices.size());
-  for (const Eigen::Vector3d& p : mesh.vertices) vertices.insert(vertices.end(), {p.x(), p.y(), p.z()});
+  for (const Eigen::Vector3d& p : mesh.vertices)
+    vertices.insert(vertices.end(), {p.x(), p.y(), p.z()});
   std::vector<int> triangles;
   triangles.reserve(3 * mesh.triangles.size());
-  for (const Eigen::Vector3i& t : mesh.triangles) triangles.insert(triangles.end(), {t[0], t[1], t[2]});
+  for (const Eigen::Vector3i& t : mesh.triangles)
+    triangles.insert(triangles.end(), {t[0], t[1], t[2]});
   return build_bvh(vertices.data(), static_cast<int>(mesh.vertices.size()), triangles.data(),
                    static_cast<int>(mesh.triangles.size()));
 }
@@ -59,7 +61,8 @@ double robot_reach(const RobotModel& robot, const ConfigurationSpace& space) {
       if (joint.type == JointType::kPrismatic) origin_reach[l] += joint_magnitude(robot, space, j);
     }
     double extent = 0;
-    for (const Eigen::Vector3d& p : robot.links[l].collision.vertices) extent = std::max(extent, p.norm());
+    for (const Eigen::Vector3d& p : robot.links[l].collision.vertices)
+      extent = std::max(extent, p.norm());
     reach = std::max(reach, origin_reach[l] + extent);
   }
   return reach;
@@ -84,7 +87,8 @@ std::size_t drop_unreachable_obstacle_triangles(Scene* scene) {
   }
   // Grow by the reach, plus a margin well beyond the tolerance band.
   const double grow = reach * (1 + 1e-6) + 1e-3;
-  const Eigen::AlignedBox3d region(base_region.min().array() - grow, base_region.max().array() + grow);
+  const Eigen::AlignedBox3d region(base_region.min().array() - grow,
+                                   base_region.max().array() + grow);
   std::size_t dropped = 0;
   for (Obstacle& obstacle : scene->obstacles) {
     std::vector<Eigen::Vector3i> kept;
@@ -126,7 +130,8 @@ CollisionModel build_collision_model(const Scene& scene) {
       store_transform(joint.X_PJ, k.X_PJ);
       for (int c = 0; c < 3; ++c) k.axis[c] = static_cast<float>(joint.axis_J[c]);
       if (joint.is_single_dof()) {
-        k.motion = joint.type == JointType::kPrismatic ? LinkMotion::kPrismatic : LinkMotion::kRevolute;
+        k.motion =
+            joint.type == JointType::kPrismatic ? LinkMotion::kPrismatic : LinkMotion::kRevolute;
         // value = multiplier * q[source] + offset, folding in mimic and fixed values.
         const int master = joint.mimic_joint >= 0 ? joint.mimic_joint : link.parent_joint;
         const double m = joint.mimic_joint >= 0 ? joint.mimic_multiplier : 1.0;

@@ -77,8 +77,8 @@ class YamlReader {
   std::vector<double> numbers(const YAML::Node& node, const std::string& key,
                               std::size_t count) const {
     if (!node.IsSequence() || node.size() != count) {
-      fail(node, key, "expected a list of " + std::to_string(count) + " numbers, found " +
-                          kind(node));
+      fail(node, key,
+           "expected a list of " + std::to_string(count) + " numbers, found " + kind(node));
     }
     std::vector<double> values;
     for (std::size_t i = 0; i < count; ++i) {
@@ -106,8 +106,10 @@ class YamlReader {
     const std::string name = text(node, key);
     const fs::path resolved = (fs::path(file_).parent_path() / name).lexically_normal();
     if (!fs::exists(resolved)) {
-      fail(node, key, "'" + resolved.string() + "' does not exist; fix the path (relative to "
-                      "the scene file)");
+      fail(node, key,
+           "'" + resolved.string() +
+               "' does not exist; fix the path (relative to "
+               "the scene file)");
     }
     return resolved.string();
   }
@@ -119,11 +121,16 @@ class YamlReader {
  private:
   static std::string kind(const YAML::Node& node) {
     switch (node.Type()) {
-      case YAML::NodeType::Null: return "nothing";
-      case YAML::NodeType::Scalar: return "'" + node.Scalar() + "'";
-      case YAML::NodeType::Sequence: return "a list of " + std::to_string(node.size());
-      case YAML::NodeType::Map: return "a map";
-      default: return "no value";
+      case YAML::NodeType::Null:
+        return "nothing";
+      case YAML::NodeType::Scalar:
+        return "'" + node.Scalar() + "'";
+      case YAML::NodeType::Sequence:
+        return "a list of " + std::to_string(node.size());
+      case YAML::NodeType::Map:
+        return "a map";
+      default:
+        return "no value";
     }
   }
 
@@ -160,23 +167,23 @@ PlannerSettings read_planner_settings(const YamlReader& in, const YAML::Node& ov
   PlannerSettings settings;
   flatten_settings(YAML::Load(default_planner_settings_yaml()), "", &settings);
   if (!overrides) return settings;
-  std::function<void(const YAML::Node&, const std::string&)> apply =
-      [&](const YAML::Node& node, const std::string& key) {
-        if (!node.IsMap()) in.fail(node, key, "expected a map of settings");
-        for (const auto& entry : node) {
-          const std::string name = YamlReader::join(key, entry.first.as<std::string>());
-          const std::string setting = name.substr(std::string("planner.").size());
-          if (entry.second.IsMap()) {
-            apply(entry.second, name);
-          } else if (settings.numbers.count(setting)) {
-            settings.numbers[setting] = in.number(entry.second, name);
-          } else if (settings.words.count(setting)) {
-            settings.words[setting] = in.text(entry.second, name);
-          } else {
-            in.fail(entry.first, name, "unknown planner setting; config/planner.yaml lists them");
-          }
-        }
-      };
+  std::function<void(const YAML::Node&, const std::string&)> apply = [&](const YAML::Node& node,
+                                                                         const std::string& key) {
+    if (!node.IsMap()) in.fail(node, key, "expected a map of settings");
+    for (const auto& entry : node) {
+      const std::string name = YamlReader::join(key, entry.first.as<std::string>());
+      const std::string setting = name.substr(std::string("planner.").size());
+      if (entry.second.IsMap()) {
+        apply(entry.second, name);
+      } else if (settings.numbers.count(setting)) {
+        settings.numbers[setting] = in.number(entry.second, name);
+      } else if (settings.words.count(setting)) {
+        settings.words[setting] = in.text(entry.second, name);
+      } else {
+        in.fail(entry.first, name, "unknown planner setting; config/planner.yaml lists them");
+      }
+    }
+  };
   apply(overrides, "planner");
   return settings;
 }
@@ -191,16 +198,18 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
     in.fail(node, key, "give exactly one of mesh: (a rigid robot) or urdf: (an articulated one)");
   }
   if (node["mesh"]) {
-    for (const char* name : {"srdf", "packages", "base_pose", "planned_joints", "fixed_joints",
-                             "joint_limits"}) {
+    for (const char* name :
+         {"srdf", "packages", "base_pose", "planned_joints", "fixed_joints", "joint_limits"}) {
       if (node[name]) in.fail(node[name], key + "." + name, "applies only to urdf: robots");
     }
     if (node["base"] && in.text(node["base"], key + ".base") != "floating") {
       in.fail(node["base"], key + ".base", "a mesh robot is a rigid body with a floating base");
     }
     const std::string mesh_path = in.path(node["mesh"], key + ".mesh");
-    TriangleMesh mesh = load_mesh(mesh_path, Eigen::Vector3d::Ones(), in.at(node["mesh"], key + ".mesh"));
-    scene->robot = make_rigid_robot(fs::path(mesh_path).stem().string(), std::move(mesh), mesh_path);
+    TriangleMesh mesh =
+        load_mesh(mesh_path, Eigen::Vector3d::Ones(), in.at(node["mesh"], key + ".mesh"));
+    scene->robot =
+        make_rigid_robot(fs::path(mesh_path).stem().string(), std::move(mesh), mesh_path);
     space.base = BaseType::kFloating;
     return;
   }
@@ -230,11 +239,13 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
   } else if (base == "floating") {
     space.base = BaseType::kFloating;
   } else {
-    in.fail(node["base"], key + ".base", "'" + base + "' is not a base; use fixed, planar or floating");
+    in.fail(node["base"], key + ".base",
+            "'" + base + "' is not a base; use fixed, planar or floating");
   }
   if (node["base_pose"]) {
     if (space.base == BaseType::kFloating) {
-      in.fail(node["base_pose"], key + ".base_pose", "a floating base takes its pose from the configuration");
+      in.fail(node["base_pose"], key + ".base_pose",
+              "a floating base takes its pose from the configuration");
     }
     space.X_WB = read_pose(in, node["base_pose"], key + ".base_pose");
   }
@@ -253,8 +264,9 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
     const int j = robot.find_joint(name);
     if (j < 0) in.fail(name_node, where, "URDF '" + urdf_path + "' has no joint '" + name + "'");
     if (!robot.joints[j].is_single_dof()) {
-      in.fail(name_node, where, "joint '" + name + "' is " + joint_type_name(robot.joints[j].type) +
-                                    "; only revolute, continuous and prismatic joints take a value");
+      in.fail(name_node, where,
+              "joint '" + name + "' is " + joint_type_name(robot.joints[j].type) +
+                  "; only revolute, continuous and prismatic joints take a value");
     }
     if (robot.joints[j].mimic_joint >= 0) {
       in.fail(name_node, where, "joint '" + name + "' mimics another joint and follows it");
@@ -264,7 +276,8 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
 
   if (node["planned_joints"]) {
     const YAML::Node list = node["planned_joints"];
-    if (!list.IsSequence()) in.fail(list, key + ".planned_joints", "expected a list of joint names");
+    if (!list.IsSequence())
+      in.fail(list, key + ".planned_joints", "expected a list of joint names");
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string where = key + ".planned_joints[" + std::to_string(i) + "]";
       const int j = single_dof_joint(list[i], where);
@@ -278,7 +291,8 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
     }
   }
   if (space.planned_joints.empty() && space.base == BaseType::kFixed) {
-    in.fail(node, key, "nothing to plan: list planned_joints or give the robot a planar or floating base");
+    in.fail(node, key,
+            "nothing to plan: list planned_joints or give the robot a planar or floating base");
   }
   auto planned_index = [&](int j) {
     for (std::size_t i = 0; i < space.planned_joints.size(); ++i) {
@@ -293,12 +307,14 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
     for (const auto& entry : map) {
       const std::string where = key + ".fixed_joints." + entry.first.as<std::string>();
       const int j = single_dof_joint(entry.first, where);
-      if (planned_index(j) >= 0) in.fail(entry.first, where, "joint is planned; it cannot also be fixed");
+      if (planned_index(j) >= 0)
+        in.fail(entry.first, where, "joint is planned; it cannot also be fixed");
       const double value = in.number(entry.second, where);
       const Joint& joint = robot.joints[j];
       if (joint.type != JointType::kContinuous && (value < joint.lower || value > joint.upper)) {
         std::ostringstream problem;
-        problem << value << " is outside the joint's limits [" << joint.lower << ", " << joint.upper << "]";
+        problem << value << " is outside the joint's limits [" << joint.lower << ", " << joint.upper
+                << "]";
         in.fail(entry.second, where, problem.str());
       }
       space.fixed_positions[j] = value;
@@ -307,7 +323,8 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
 
   if (node["joint_limits"]) {
     const YAML::Node map = node["joint_limits"];
-    if (!map.IsMap()) in.fail(map, key + ".joint_limits", "expected a map of joint name: [lower, upper]");
+    if (!map.IsMap())
+      in.fail(map, key + ".joint_limits", "expected a map of joint name: [lower, upper]");
     for (const auto& entry : map) {
       const std::string where = key + ".joint_limits." + entry.first.as<std::string>();
       const int j = single_dof_joint(entry.first, where);
@@ -317,7 +334,8 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
       if (range[0] > range[1]) in.fail(entry.second, where, "inverted limits: lower exceeds upper");
       if (range[0] < space.lower[i] || range[1] > space.upper[i]) {
         std::ostringstream problem;
-        problem << "may only narrow the URDF limits [" << space.lower[i] << ", " << space.upper[i] << "]";
+        problem << "may only narrow the URDF limits [" << space.lower[i] << ", " << space.upper[i]
+                << "]";
         in.fail(entry.second, where, problem.str());
       }
       space.lower[i] = range[0];
@@ -332,16 +350,20 @@ void read_bounds(const YamlReader& in, const YAML::Node& node, ConfigurationSpac
     if (node) in.fail(node, "bounds", "a fixed-base robot has no base bounds; remove bounds:");
     return;
   }
-  if (!node) in.fail(node, "bounds", "missing: a moving base needs bounds: {min: [...], max: [...]}");
+  if (!node)
+    in.fail(node, "bounds", "missing: a moving base needs bounds: {min: [...], max: [...]}");
   in.expect_map(node, "bounds", {"min", "max"});
   const std::size_t count = space->base == BaseType::kFloating ? 3 : 2;
-  const std::vector<double> lo = in.numbers(in.required(node, "bounds", "min"), "bounds.min", count);
-  const std::vector<double> hi = in.numbers(in.required(node, "bounds", "max"), "bounds.max", count);
+  const std::vector<double> lo =
+      in.numbers(in.required(node, "bounds", "min"), "bounds.min", count);
+  const std::vector<double> hi =
+      in.numbers(in.required(node, "bounds", "max"), "bounds.max", count);
   for (std::size_t k = 0; k < count; ++k) {
     if (lo[k] >= hi[k]) {
       std::ostringstream problem;
-      problem << "inverted or empty bounds on axis " << "xyz"[k] << ": min " << lo[k]
-              << " is not below max " << hi[k] << "; swap or widen them";
+      problem << "inverted or empty bounds on axis "
+              << "xyz"[k] << ": min " << lo[k] << " is not below max " << hi[k]
+              << "; swap or widen them";
       in.fail(node["min"], "bounds.min", problem.str());
     }
     space->base_min[k] = lo[k];
@@ -356,14 +378,16 @@ std::vector<float> read_configuration(const YamlReader& in, const YAML::Node& no
   in.expect_map(node, key, {"base", "joints"});
   std::vector<float> q(space.width(), 0.0f);
   if (space.base == BaseType::kFixed) {
-    if (node["base"]) in.fail(node["base"], key + ".base", "a fixed-base robot takes no base pose here");
+    if (node["base"])
+      in.fail(node["base"], key + ".base", "a fixed-base robot takes no base pose here");
   } else {
     const YAML::Node base = in.required(node, key, "base");
     const std::string where = key + ".base";
     if (space.base == BaseType::kFloating) {
       in.expect_map(base, where, {"xyz", "quat_wxyz"});
       const Eigen::Vector3d p = in.vector3(in.required(base, where, "xyz"), where + ".xyz");
-      const Eigen::Quaterniond r = in.quaternion(in.required(base, where, "quat_wxyz"), where + ".quat_wxyz");
+      const Eigen::Quaterniond r =
+          in.quaternion(in.required(base, where, "quat_wxyz"), where + ".quat_wxyz");
       const double values[7] = {p.x(), p.y(), p.z(), r.w(), r.x(), r.y(), r.z()};
       for (int k = 0; k < 7; ++k) q[k] = static_cast<float>(values[k]);
     } else {
@@ -382,7 +406,8 @@ std::vector<float> read_configuration(const YamlReader& in, const YAML::Node& no
     for (const auto& entry : joints) {
       const std::string name = entry.first.as<std::string>();
       if (!planned.count(name)) {
-        in.fail(entry.first, key + ".joints." + name, "not a planned joint; list it in robot.planned_joints or remove it");
+        in.fail(entry.first, key + ".joints." + name,
+                "not a planned joint; list it in robot.planned_joints or remove it");
       }
     }
     for (std::size_t i = 0; i < space.planned_joints.size(); ++i) {
@@ -406,9 +431,11 @@ void read_obstacles(const YamlReader& in, const YAML::Node& node, Scene* scene) 
     const std::string key = "obstacles[" + std::to_string(i) + "]";
     in.expect_map(item, key, {"name", "mesh", "box", "sphere", "cylinder", "pose", "scale"});
     int shapes = 0;
-    for (const char* shape : {"mesh", "box", "sphere", "cylinder"}) shapes += item[shape].IsDefined();
+    for (const char* shape : {"mesh", "box", "sphere", "cylinder"})
+      shapes += item[shape].IsDefined();
     if (shapes != 1) in.fail(item, key, "give exactly one of mesh, box, sphere, cylinder");
-    if (item["scale"] && !item["mesh"]) in.fail(item["scale"], key + ".scale", "scale applies to meshes only");
+    if (item["scale"] && !item["mesh"])
+      in.fail(item["scale"], key + ".scale", "scale applies to meshes only");
     Obstacle obstacle;
     obstacle.defined = in.at(item, key);
     TriangleMesh mesh;
@@ -416,12 +443,14 @@ void read_obstacles(const YamlReader& in, const YAML::Node& node, Scene* scene) 
       const std::string path = in.path(item["mesh"], key + ".mesh");
       const Eigen::Vector3d scale =
           item["scale"] ? in.vector3(item["scale"], key + ".scale") : Eigen::Vector3d::Ones();
-      if ((scale.array() == 0).any()) in.fail(item["scale"], key + ".scale", "a zero scale flattens the mesh");
+      if ((scale.array() == 0).any())
+        in.fail(item["scale"], key + ".scale", "a zero scale flattens the mesh");
       mesh = load_mesh(path, scale, in.at(item["mesh"], key + ".mesh"));
       obstacle.name = fs::path(path).stem().string();
     } else if (item["box"]) {
       const Eigen::Vector3d size = in.vector3(item["box"], key + ".box");
-      if ((size.array() <= 0).any()) in.fail(item["box"], key + ".box", "side lengths must be positive");
+      if ((size.array() <= 0).any())
+        in.fail(item["box"], key + ".box", "side lengths must be positive");
       mesh = make_box(size);
       obstacle.name = "box";
     } else if (item["sphere"]) {
@@ -432,15 +461,18 @@ void read_obstacles(const YamlReader& in, const YAML::Node& node, Scene* scene) 
     } else {
       const YAML::Node c = item["cylinder"];
       in.expect_map(c, key + ".cylinder", {"radius", "length"});
-      const double radius = in.number(in.required(c, key + ".cylinder", "radius"), key + ".cylinder.radius");
-      const double length = in.number(in.required(c, key + ".cylinder", "length"), key + ".cylinder.length");
-      if (radius <= 0 || length <= 0) in.fail(c, key + ".cylinder", "radius and length must be positive");
+      const double radius =
+          in.number(in.required(c, key + ".cylinder", "radius"), key + ".cylinder.radius");
+      const double length =
+          in.number(in.required(c, key + ".cylinder", "length"), key + ".cylinder.length");
+      if (radius <= 0 || length <= 0)
+        in.fail(c, key + ".cylinder", "radius and length must be positive");
       mesh = make_cylinder(radius, length);
       obstacle.name = "cylinder";
     }
     if (item["name"]) obstacle.name = in.text(item["name"], key + ".name");
-    const Eigen::Isometry3d X_WO = item["pose"] ? read_pose(in, item["pose"], key + ".pose")
-                                                : Eigen::Isometry3d::Identity();
+    const Eigen::Isometry3d X_WO =
+        item["pose"] ? read_pose(in, item["pose"], key + ".pose") : Eigen::Isometry3d::Identity();
     obstacle.mesh_W = transformed(mesh, X_WO);
     scene->obstacles.push_back(std::move(obstacle));
   }
@@ -480,8 +512,9 @@ Scene load_scene(const std::string& path) {
   Scene scene;
   scene.file = path;
   try {
-    in.expect_map(root, "", {"name", "description", "narrowest_passage", "robot", "obstacles",
-                             "bounds", "start", "goal", "planner"});
+    in.expect_map(root, "",
+                  {"name", "description", "narrowest_passage", "robot", "obstacles", "bounds",
+                   "start", "goal", "planner"});
     scene.name = root["name"] ? in.text(root["name"], "name") : fs::path(path).stem().string();
     if (root["description"]) scene.description = in.text(root["description"], "description");
     if (root["narrowest_passage"]) {

@@ -67,12 +67,18 @@ Eigen::Isometry3d to_isometry(const urdf::Pose& pose) {
 
 JointType to_joint_type(int urdf_type) {
   switch (urdf_type) {
-    case urdf::Joint::REVOLUTE: return JointType::kRevolute;
-    case urdf::Joint::CONTINUOUS: return JointType::kContinuous;
-    case urdf::Joint::PRISMATIC: return JointType::kPrismatic;
-    case urdf::Joint::FLOATING: return JointType::kFloating;
-    case urdf::Joint::PLANAR: return JointType::kPlanar;
-    default: return JointType::kFixed;
+    case urdf::Joint::REVOLUTE:
+      return JointType::kRevolute;
+    case urdf::Joint::CONTINUOUS:
+      return JointType::kContinuous;
+    case urdf::Joint::PRISMATIC:
+      return JointType::kPrismatic;
+    case urdf::Joint::FLOATING:
+      return JointType::kFloating;
+    case urdf::Joint::PLANAR:
+      return JointType::kPlanar;
+    default:
+      return JointType::kFixed;
   }
 }
 
@@ -146,8 +152,7 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
     throw InputError({urdf_path, doc.ErrorLineNum(), "xml"},
-                     std::string("not well-formed XML: ") + doc.ErrorName() +
-                         "; fix the file");
+                     std::string("not well-formed XML: ") + doc.ErrorName() + "; fix the file");
   }
   const std::map<std::string, int> link_lines = element_lines(doc, "link");
   const std::map<std::string, int> joint_lines = element_lines(doc, "joint");
@@ -163,9 +168,9 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
     parse_error = handler.first_error;
   }
   if (!model) {
-    throw InputError({urdf_path, 0, "robot"},
-                     "URDF does not parse" + (parse_error.empty() ? "" : ": " + parse_error) +
-                         "; fix the file");
+    throw InputError(
+        {urdf_path, 0, "robot"},
+        "URDF does not parse" + (parse_error.empty() ? "" : ": " + parse_error) + "; fix the file");
   }
   auto line_of = [](const std::map<std::string, int>& lines, const std::string& name) {
     const auto it = lines.find(name);
@@ -249,8 +254,9 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
                                   "of this URDF");
     }
     if (robot.joints[joint.mimic_joint].mimic_joint != -1) {
-      throw InputError(where, "mimics a joint that itself mimics another; chain them to the "
-                              "master instead");
+      throw InputError(where,
+                       "mimics a joint that itself mimics another; chain them to the "
+                       "master instead");
     }
   }
   std::sort(robot.disabled_pairs.begin(), robot.disabled_pairs.end());
@@ -258,7 +264,7 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
 }
 
 int apply_srdf(RobotModel* robot, const std::string& srdf_path,
-                const SourceLocation& referenced_from, std::vector<std::string>* notices) {
+               const SourceLocation& referenced_from, std::vector<std::string>* notices) {
   const std::string xml = read_text_file(srdf_path, referenced_from, "SRDF");
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
@@ -270,10 +276,15 @@ int apply_srdf(RobotModel* robot, const std::string& srdf_path,
     throw InputError({srdf_path, root ? root->GetLineNum() : 0, "robot"},
                      "an SRDF has <robot> as its root element");
   }
-  static const std::set<std::string> kCore = {
-      "group", "group_state", "end_effector", "virtual_joint", "passive_joint",
-      "disable_collisions", "disable_default_collisions", "enable_collisions",
-      "link_sphere_approximation"};
+  static const std::set<std::string> kCore = {"group",
+                                              "group_state",
+                                              "end_effector",
+                                              "virtual_joint",
+                                              "passive_joint",
+                                              "disable_collisions",
+                                              "disable_default_collisions",
+                                              "enable_collisions",
+                                              "link_sphere_approximation"};
   std::set<std::string> skipped;
   int read = 0;
   std::set<std::pair<int, int>> pairs(robot->disabled_pairs.begin(), robot->disabled_pairs.end());

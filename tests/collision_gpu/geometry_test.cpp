@@ -14,9 +14,13 @@
 namespace gplanner::geometry {
 namespace {
 
-template <typename T> Vec3<T> to_vec3(const Eigen::Vector3d& p) { return {T(p.x()), T(p.y()), T(p.z())}; }
+template <typename T>
+Vec3<T> to_vec3(const Eigen::Vector3d& p) {
+  return {T(p.x()), T(p.y()), T(p.z())};
+}
 
-template <typename T> Mat3<T> to_mat3(const Eigen::Matrix3d& m) {
+template <typename T>
+Mat3<T> to_mat3(const Eigen::Matrix3d& m) {
   Mat3<T> out;
   for (int i = 0; i < 3; ++i) out.r[i] = {T(m(i, 0)), T(m(i, 1)), T(m(i, 2))};
   return out;
@@ -41,7 +45,8 @@ TrianglePair at_distance(TrianglePair pair, double target) {
   return pair;
 }
 
-template <typename T> bool within(const TrianglePair& pair, double threshold) {
+template <typename T>
+bool within(const TrianglePair& pair, double threshold) {
   const Vec3<T> a[3] = {to_vec3<T>(pair.a[0]), to_vec3<T>(pair.a[1]), to_vec3<T>(pair.a[2])};
   const Vec3<T> b[3] = {to_vec3<T>(pair.b[0]), to_vec3<T>(pair.b[1]), to_vec3<T>(pair.b[2])};
   return triangles_within(a, b, T(threshold));
@@ -56,12 +61,24 @@ TrianglePair random_pair(std::mt19937_64* rng) {
   for (auto& v : pair.a) v = point();
   for (auto& v : pair.b) v = point() + Eigen::Vector3d(0.5, 0, 0);
   switch ((*rng)() % 6) {
-    case 0: pair.a[2] = pair.a[0] + 1e-4 * (pair.a[1] - pair.a[0]) + 1e-6 * point(); break;  // sliver
-    case 1: pair.b[2] = 0.5 * (pair.b[0] + pair.b[1]); break;  // collinear
-    case 2: pair.b[1] = pair.b[2] = pair.b[0]; break;          // a point
-    case 3: for (auto& v : pair.b) v.z() = 0; for (auto& v : pair.a) v.z() = 0; break;  // coplanar
-    case 4: pair.b[0] = pair.a[1]; break;                      // shared vertex
-    default: break;
+    case 0:
+      pair.a[2] = pair.a[0] + 1e-4 * (pair.a[1] - pair.a[0]) + 1e-6 * point();
+      break;  // sliver
+    case 1:
+      pair.b[2] = 0.5 * (pair.b[0] + pair.b[1]);
+      break;  // collinear
+    case 2:
+      pair.b[1] = pair.b[2] = pair.b[0];
+      break;  // a point
+    case 3:
+      for (auto& v : pair.b) v.z() = 0;
+      for (auto& v : pair.a) v.z() = 0;
+      break;  // coplanar
+    case 4:
+      pair.b[0] = pair.a[1];
+      break;  // shared vertex
+    default:
+      break;
   }
   return pair;
 }
@@ -69,7 +86,8 @@ TrianglePair random_pair(std::mt19937_64* rng) {
 // Never reports apart what is within 0.9 threshold; reports within what is beyond 1.1
 // threshold in at most `allowed_false_alarms` of the cases (float keeps slivers,
 // whose plane it cannot resolve, as their edges grown by the sliver's thickness).
-template <typename T> void agrees_with_fcl_on_distance(double threshold, double allowed_false_alarms) {
+template <typename T>
+void agrees_with_fcl_on_distance(double threshold, double allowed_false_alarms) {
   std::mt19937_64 rng(42);
   int checked = 0, far = 0, false_alarms = 0;
   for (int i = 0; i < 20000; ++i) {
@@ -84,12 +102,14 @@ template <typename T> void agrees_with_fcl_on_distance(double threshold, double 
       const TrianglePair moved = at_distance(pair, factor * threshold);
       const double actual = fcl_distance(moved);
       if (actual <= 0.9 * threshold) {
-        ASSERT_TRUE(within<T>(moved, threshold)) << "pair " << i << " at " << actual << " reported apart";
+        ASSERT_TRUE(within<T>(moved, threshold))
+            << "pair " << i << " at " << actual << " reported apart";
       } else if (actual >= 1.1 * threshold) {
         ++far;
         const bool alarm = within<T>(moved, threshold);
         false_alarms += alarm;
-        if (allowed_false_alarms == 0) ASSERT_FALSE(alarm) << "pair " << i << " at " << actual << " reported within";
+        if (allowed_false_alarms == 0)
+          ASSERT_FALSE(alarm) << "pair " << i << " at " << actual << " reported within";
       }
       ++checked;
     }
@@ -99,16 +119,28 @@ template <typename T> void agrees_with_fcl_on_distance(double threshold, double 
 }
 
 TEST(TriangleDistance, AgreesWithFclInDouble) { agrees_with_fcl_on_distance<double>(1e-3, 0); }
-TEST(TriangleDistance, AgreesWithFclInDoubleAtSmallThresholds) { agrees_with_fcl_on_distance<double>(2e-5, 0); }
+TEST(TriangleDistance, AgreesWithFclInDoubleAtSmallThresholds) {
+  agrees_with_fcl_on_distance<double>(2e-5, 0);
+}
 TEST(TriangleDistance, AgreesWithFclInFloat) { agrees_with_fcl_on_distance<float>(1e-3, 0); }
-TEST(TriangleDistance, FloatNeverMissesAtSmallThresholds) { agrees_with_fcl_on_distance<float>(2e-5, 0.01); }
+TEST(TriangleDistance, FloatNeverMissesAtSmallThresholds) {
+  agrees_with_fcl_on_distance<float>(2e-5, 0.01);
+}
 
 TEST(TriangleDistance, SegmentDistancesOnKnownCases) {
   const Vec3<double> o{0, 0, 0}, x{1, 0, 0};
-  EXPECT_DOUBLE_EQ(segment_segment_squared_distance(o, x, Vec3<double>{0.5, 1, 0}, Vec3<double>{0.5, 2, 0}), 1.0);
-  EXPECT_DOUBLE_EQ(segment_segment_squared_distance(o, x, Vec3<double>{2, 0, 0}, Vec3<double>{3, 0, 0}), 1.0);  // collinear
-  EXPECT_DOUBLE_EQ(segment_segment_squared_distance(o, o, Vec3<double>{0, 3, 0}, Vec3<double>{0, 3, 0}), 9.0);  // points
-  EXPECT_DOUBLE_EQ(segment_segment_squared_distance(o, x, Vec3<double>{0.5, -1, 1}, Vec3<double>{0.5, 1, 1}), 1.0);  // crossing above
+  EXPECT_DOUBLE_EQ(
+      segment_segment_squared_distance(o, x, Vec3<double>{0.5, 1, 0}, Vec3<double>{0.5, 2, 0}),
+      1.0);
+  EXPECT_DOUBLE_EQ(
+      segment_segment_squared_distance(o, x, Vec3<double>{2, 0, 0}, Vec3<double>{3, 0, 0}),
+      1.0);  // collinear
+  EXPECT_DOUBLE_EQ(
+      segment_segment_squared_distance(o, o, Vec3<double>{0, 3, 0}, Vec3<double>{0, 3, 0}),
+      9.0);  // points
+  EXPECT_DOUBLE_EQ(
+      segment_segment_squared_distance(o, x, Vec3<double>{0.5, -1, 1}, Vec3<double>{0.5, 1, 1}),
+      1.0);  // crossing above
 }
 
 Eigen::Matrix3d random_rotation(std::mt19937_64* rng) {
@@ -133,11 +165,15 @@ TEST(ObbOverlap, AgreesWithFclAndIsNeverLessConservative) {
     for (const bool as_float : {false, true}) {
       bool actual;
       if (as_float) {
-        actual = obbs_overlap(Obb<float>{to_vec3<float>(a.To), to_mat3<float>(a.axis), to_vec3<float>(a.extent)},
-                              Obb<float>{to_vec3<float>(b.To), to_mat3<float>(b.axis), to_vec3<float>(b.extent)}, 0.0f);
+        actual = obbs_overlap(
+            Obb<float>{to_vec3<float>(a.To), to_mat3<float>(a.axis), to_vec3<float>(a.extent)},
+            Obb<float>{to_vec3<float>(b.To), to_mat3<float>(b.axis), to_vec3<float>(b.extent)},
+            0.0f);
       } else {
-        actual = obbs_overlap(Obb<double>{to_vec3<double>(a.To), to_mat3<double>(a.axis), to_vec3<double>(a.extent)},
-                              Obb<double>{to_vec3<double>(b.To), to_mat3<double>(b.axis), to_vec3<double>(b.extent)}, 0.0);
+        actual = obbs_overlap(
+            Obb<double>{to_vec3<double>(a.To), to_mat3<double>(a.axis), to_vec3<double>(a.extent)},
+            Obb<double>{to_vec3<double>(b.To), to_mat3<double>(b.axis), to_vec3<double>(b.extent)},
+            0.0);
       }
       if (expected) ASSERT_TRUE(actual) << "box pair " << i << " overlaps in FCL";
       disagreements += actual != expected;
@@ -161,8 +197,10 @@ TEST(ObbOverlap, MarginGrowsBothBoxes) {
     const Obb<double> b{to_vec3<double>(cb), to_mat3<double>(R), to_vec3<double>(eb)};
     EXPECT_FALSE(obbs_overlap(a, b, 0.9 * gap));
     EXPECT_TRUE(obbs_overlap(a, b, 1.1 * gap));
-    EXPECT_TRUE(sphere_overlaps_obb(to_vec3<double>(R * Eigen::Vector3d(0.3 + 0.5 * gap, 0, 0)), 0.0, a, 0.6 * gap));
-    EXPECT_FALSE(sphere_overlaps_obb(to_vec3<double>(R * Eigen::Vector3d(0.3 + 0.5 * gap, 0, 0)), 0.0, a, 0.4 * gap));
+    EXPECT_TRUE(sphere_overlaps_obb(to_vec3<double>(R * Eigen::Vector3d(0.3 + 0.5 * gap, 0, 0)),
+                                    0.0, a, 0.6 * gap));
+    EXPECT_FALSE(sphere_overlaps_obb(to_vec3<double>(R * Eigen::Vector3d(0.3 + 0.5 * gap, 0, 0)),
+                                     0.0, a, 0.4 * gap));
   }
 }
 
@@ -176,7 +214,8 @@ TEST(Transforms, ComposeInvertAndRotate) {
   EXPECT_NEAR(back.x, 0.3, 1e-15);
   EXPECT_NEAR(back.z, 0.7, 1e-15);
   const Eigen::Quaterniond q(Eigen::AngleAxisd(0.8, Eigen::Vector3d(1, -2, 0.5).normalized()));
-  const Mat3<double> Rq = quaternion_rotation(2 * q.w(), 2 * q.x(), 2 * q.y(), 2 * q.z());  // not unit
+  const Mat3<double> Rq =
+      quaternion_rotation(2 * q.w(), 2 * q.x(), 2 * q.y(), 2 * q.z());  // not unit
   const Eigen::Matrix3d expected = q.toRotationMatrix();
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) EXPECT_NEAR(Rq.r[i][j], expected(i, j), 1e-14);

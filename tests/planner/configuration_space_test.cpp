@@ -78,13 +78,17 @@ TEST(ConfigurationSpace, InterpolatesTheShortWay) {
   const double a_angle = 0.0, b_angle = 350.0 * kPi / 180;
   const Eigen::Quaterniond qa(Eigen::AngleAxisd(a_angle, Eigen::Vector3d::UnitZ()));
   const Eigen::Quaterniond qb(Eigen::AngleAxisd(b_angle, Eigen::Vector3d::UnitZ()));
-  const float a[9] = {0, 0, 1, float(qa.w()), float(qa.x()), float(qa.y()), float(qa.z()), 0.0f, 3.0f};
-  const float b[9] = {1, 0, 1, float(-qb.w()), float(-qb.x()), float(-qb.y()), float(-qb.z()), 1.0f, -3.0f};
+  const float a[9] = {0,    0,   1, float(qa.w()), float(qa.x()), float(qa.y()), float(qa.z()),
+                      0.0f, 3.0f};
+  const float b[9] = {1,    0,    1, float(-qb.w()), float(-qb.x()), float(-qb.y()), float(-qb.z()),
+                      1.0f, -3.0f};
   float mid[9];
   f.space.interpolate(a, b, 0.5, mid);
   EXPECT_FLOAT_EQ(mid[0], 0.5f);
   const Eigen::Quaterniond qm(mid[3], mid[4], mid[5], mid[6]);
-  EXPECT_NEAR(qm.angularDistance(Eigen::Quaterniond(Eigen::AngleAxisd(-5 * kPi / 180, Eigen::Vector3d::UnitZ()))), 0, 1e-5);
+  EXPECT_NEAR(qm.angularDistance(
+                  Eigen::Quaterniond(Eigen::AngleAxisd(-5 * kPi / 180, Eigen::Vector3d::UnitZ()))),
+              0, 1e-5);
   EXPECT_FLOAT_EQ(mid[7], 0.5f);
   // Continuous joint from 3 to -3 goes through pi, not through 0.
   EXPECT_NEAR(std::abs(mid[8]), kPi, 1e-5);

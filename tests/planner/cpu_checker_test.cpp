@@ -24,7 +24,8 @@ TEST_P(CpuAgreesWithFcl, WithinTheToleranceBand) {
   std::vector<std::uint8_t> a(n), b(n);
   cpu.check(q.data(), n, a.data());
   fcl.check(q.data(), n, b.data());
-  const CheckerComparison c = compare_verdicts(q.data(), n, width, a.data(), b.data(), &fcl, tolerance_delta(scene));
+  const CheckerComparison c =
+      compare_verdicts(q.data(), n, width, a.data(), b.data(), &fcl, tolerance_delta(scene));
   EXPECT_EQ(c.missed_collisions, 0u);
   EXPECT_EQ(c.extra_outside_band, 0u) << "largest distance " << c.largest_extra_distance;
   EXPECT_GT(cpu.bv_tests(), 0u);
@@ -32,11 +33,13 @@ TEST_P(CpuAgreesWithFcl, WithinTheToleranceBand) {
   for (std::uint8_t v : b) hits += v;
   EXPECT_GT(hits, 0u);
   EXPECT_LT(hits, n);
-  std::cout << GetParam() << ": " << c.disagreements << " disagreements of " << n << ", " << c.extra_within_band
-            << " within the band; " << cpu.bv_tests() << " BV tests, " << cpu.triangle_tests() << " triangle tests\n";
+  std::cout << GetParam() << ": " << c.disagreements << " disagreements of " << n << ", "
+            << c.extra_within_band << " within the band; " << cpu.bv_tests() << " BV tests, "
+            << cpu.triangle_tests() << " triangle tests\n";
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, CpuAgreesWithFcl, ::testing::ValuesIn(testing::shipped_scene_files()),
+INSTANTIATE_TEST_SUITE_P(Scenes, CpuAgreesWithFcl,
+                         ::testing::ValuesIn(testing::shipped_scene_files()),
                          [](const ::testing::TestParamInfo<std::string>& info) {
                            return testing::scene_test_name(info.param);
                          });

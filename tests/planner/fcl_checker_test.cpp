@@ -42,7 +42,8 @@ const char* kHingeUrdf = R"(<robot name="hinge">
   <joint name="mount" type="fixed"><parent link="a"/><child link="c"/><origin xyz="0.8 0 0.5"/></joint>
 </robot>
 )";
-const char* kHingeSrdf = R"(<robot name="hinge"><disable_collisions link1="a" link2="c" reason="Adjacent"/></robot>)";
+const char* kHingeSrdf =
+    R"(<robot name="hinge"><disable_collisions link1="a" link2="c" reason="Adjacent"/></robot>)";
 const char* kHingeScene = R"(name: hinge
 robot: {urdf: hinge.urdf, srdf: hinge.srdf, planned_joints: [hinge]}
 start: {joints: {hinge: 0}}
@@ -76,8 +77,10 @@ TEST_F(FclCheckerTest, SeparatedAndPenetratingCubes) {
   EXPECT_EQ(inside, 0.0);
   // Rotated by 45 degrees about z the cube reaches sqrt(2)/2 from its centre.
   const double c = std::cos(M_PI / 8), s = std::sin(M_PI / 8);
-  const std::vector<float> turned_free = {float(0.5 + std::sqrt(0.5) + 1e-3), 0, 0, float(c), 0, 0, float(s)};
-  const std::vector<float> turned_hit = {float(0.5 + std::sqrt(0.5) - 1e-3), 0, 0, float(c), 0, 0, float(s)};
+  const std::vector<float> turned_free = {
+      float(0.5 + std::sqrt(0.5) + 1e-3), 0, 0, float(c), 0, 0, float(s)};
+  const std::vector<float> turned_hit = {
+      float(0.5 + std::sqrt(0.5) - 1e-3), 0, 0, float(c), 0, 0, float(s)};
   EXPECT_FALSE(checker.in_collision(turned_free.data()));
   EXPECT_TRUE(checker.in_collision(turned_hit.data()));
 }

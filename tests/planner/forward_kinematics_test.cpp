@@ -44,10 +44,11 @@ const char* kChainUrdf = R"(<?xml version="1.0"?>
 
 void expect_pose(const Eigen::Isometry3d& actual, const Eigen::Vector3d& p,
                  const Eigen::Matrix3d& R) {
-  EXPECT_TRUE(actual.translation().isApprox(p, 1e-12) ||
-              (actual.translation() - p).norm() < 1e-12)
+  EXPECT_TRUE(actual.translation().isApprox(p, 1e-12) || (actual.translation() - p).norm() < 1e-12)
       << "translation " << actual.translation().transpose() << " expected " << p.transpose();
-  EXPECT_LT((actual.linear() - R).norm(), 1e-12) << "rotation\n" << actual.linear() << "\nexpected\n" << R;
+  EXPECT_LT((actual.linear() - R).norm(), 1e-12) << "rotation\n"
+                                                 << actual.linear() << "\nexpected\n"
+                                                 << R;
 }
 
 Eigen::Matrix3d rot(double angle, const Eigen::Vector3d& axis) {
@@ -124,8 +125,10 @@ TEST_F(ForwardKinematics, MatchesHandComputedPoses) {
   const Eigen::Vector3d p3 = p2 + R1 * Eigen::Vector3d(0.2, 0, 0);
   const Eigen::Matrix3d R3 = R1 * rot(q3, y);
   expect_pose(link("l3"), p3, R3);
-  expect_pose(link("l4"), p3 + R3 * Eigen::Vector3d(0, 0, 1), R3 * rot(kPi / 2, Eigen::Vector3d::UnitX()));
-  expect_pose(link("l5"), Eigen::Vector3d(1, 0, 0) + R1 * Eigen::Vector3d(0, 1, 0), R1 * rot(2 * q1 + 0.1, z));
+  expect_pose(link("l4"), p3 + R3 * Eigen::Vector3d(0, 0, 1),
+              R3 * rot(kPi / 2, Eigen::Vector3d::UnitX()));
+  expect_pose(link("l5"), Eigen::Vector3d(1, 0, 0) + R1 * Eigen::Vector3d(0, 1, 0),
+              R1 * rot(2 * q1 + 0.1, z));
   // With q1 = pi/2 the numbers are simple enough to state outright.
   EXPECT_LT((link("l2").translation() - Eigen::Vector3d(1, 0.3, 0.5)).norm(), 1e-6);
   EXPECT_LT((link("l4").translation() - Eigen::Vector3d(1, 0.5, -0.5)).norm(), 1e-6);
@@ -146,7 +149,10 @@ TEST_F(ForwardKinematics, BasePosesMoveTheRoot) {
   const Eigen::Matrix3d R = r.toRotationMatrix();
   EXPECT_LT((X_WL[0].translation() - Eigen::Vector3d(1, 2, 3)).norm(), 1e-6);
   EXPECT_LT((X_WL[0].linear() - R).norm(), 1e-6);
-  EXPECT_LT((X_WL[robot_.find_link("l1")].translation() - (Eigen::Vector3d(1, 2, 3) + R * Eigen::Vector3d(1, 0, 0))).norm(), 1e-6);
+  EXPECT_LT((X_WL[robot_.find_link("l1")].translation() -
+             (Eigen::Vector3d(1, 2, 3) + R * Eigen::Vector3d(1, 0, 0)))
+                .norm(),
+            1e-6);
 
   ConfigurationSpace planar;
   planar.base = BaseType::kPlanar;

@@ -28,7 +28,9 @@ struct Case {
   Traversal traversal;
 };
 
-void PrintTo(const Case& c, std::ostream* out) { *out << c.scene << " " << traversal_name(c.traversal); }
+void PrintTo(const Case& c, std::ostream* out) {
+  *out << c.scene << " " << traversal_name(c.traversal);
+}
 
 class GpuMatchesCpu : public ::testing::TestWithParam<Case> {};
 
@@ -40,7 +42,8 @@ TEST_P(GpuMatchesCpu, OnASeededBatch) {
   CheckerOptions options;
   options.gpu.traversal = GetParam().traversal;
   std::string notice;
-  const std::unique_ptr<CollisionChecker> checker = make_collision_checker(scene, "gpu", options, &notice);
+  const std::unique_ptr<CollisionChecker> checker =
+      make_collision_checker(scene, "gpu", options, &notice);
   ASSERT_EQ(checker->backend(), "gpu") << notice;
   auto* gpu = dynamic_cast<GpuChecker*>(checker.get());
   ASSERT_NE(gpu, nullptr);
@@ -51,21 +54,24 @@ TEST_P(GpuMatchesCpu, OnASeededBatch) {
   CpuChecker cpu(scene);
   cpu.check(q.data(), n, on_cpu.data());
   FclChecker fcl(scene);
-  const CheckerComparison c =
-      compare_verdicts(q.data(), n, width, on_gpu.data(), on_cpu.data(), &fcl, tolerance_delta(scene));
+  const CheckerComparison c = compare_verdicts(q.data(), n, width, on_gpu.data(), on_cpu.data(),
+                                               &fcl, tolerance_delta(scene));
   EXPECT_EQ(c.missed_collisions, 0u);
   EXPECT_EQ(c.extra_outside_band, 0u);
-  EXPECT_LE(c.disagreements, n / 200) << "GPU and CPU run the same code: they should nearly always agree";
-  std::cout << GetParam().scene << " " << traversal_name(GetParam().traversal) << ": " << c.disagreements
-            << " disagreements with the cpu backend, " << gpu->last_stats().milliseconds << " ms, "
-            << gpu->last_stats().bv_tests << " BV tests, " << gpu->last_stats().triangle_tests
-            << " triangle tests on " << gpu->device_name() << "\n";
+  EXPECT_LE(c.disagreements, n / 200)
+      << "GPU and CPU run the same code: they should nearly always agree";
+  std::cout << GetParam().scene << " " << traversal_name(GetParam().traversal) << ": "
+            << c.disagreements << " disagreements with the cpu backend, "
+            << gpu->last_stats().milliseconds << " ms, " << gpu->last_stats().bv_tests
+            << " BV tests, " << gpu->last_stats().triangle_tests << " triangle tests on "
+            << gpu->device_name() << "\n";
 }
 
 std::vector<Case> all_cases() {
   std::vector<Case> cases;
   for (const std::string& scene : testing::shipped_scene_files()) {
-    for (const Traversal t : {Traversal::kBasic, Traversal::kPacket, Traversal::kBalanced}) cases.push_back({scene, t});
+    for (const Traversal t : {Traversal::kBasic, Traversal::kPacket, Traversal::kBalanced})
+      cases.push_back({scene, t});
   }
   return cases;
 }

@@ -30,7 +30,8 @@ std::string binary_stl(const TriangleMesh& mesh) {
   for (const Eigen::Vector3i& t : mesh.triangles) {
     float values[12] = {0, 0, 0};
     for (int k = 0; k < 3; ++k) {
-      for (int c = 0; c < 3; ++c) values[3 + 3 * k + c] = static_cast<float>(mesh.vertices[t[k]][c]);
+      for (int c = 0; c < 3; ++c)
+        values[3 + 3 * k + c] = static_cast<float>(mesh.vertices[t[k]][c]);
     }
     data.append(reinterpret_cast<const char*>(values), sizeof(values));
     data.append(2, '\0');
@@ -41,10 +42,12 @@ std::string binary_stl(const TriangleMesh& mesh) {
 std::string obj_text(const TriangleMesh& mesh) {
   std::string text = "o part\n";
   for (const Eigen::Vector3d& p : mesh.vertices) {
-    text += "v " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " " + std::to_string(p.z()) + "\n";
+    text += "v " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " " +
+            std::to_string(p.z()) + "\n";
   }
   for (const Eigen::Vector3i& t : mesh.triangles) {
-    text += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
+    text += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
+            std::to_string(t[2] + 1) + "\n";
   }
   return text;
 }
@@ -54,7 +57,8 @@ std::string obj_text(const TriangleMesh& mesh) {
 std::string dae_text(const TriangleMesh& mesh) {
   std::string positions, indices;
   for (const Eigen::Vector3d& p : mesh.vertices) {
-    positions += std::to_string(p.x()) + " " + std::to_string(p.y()) + " " + std::to_string(p.z()) + " ";
+    positions +=
+        std::to_string(p.x()) + " " + std::to_string(p.y()) + " " + std::to_string(p.z()) + " ";
   }
   for (const Eigen::Vector3i& t : mesh.triangles) {
     indices += std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + " ";
@@ -64,11 +68,14 @@ std::string dae_text(const TriangleMesh& mesh) {
 <COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
 <asset><unit name="centimeter" meter="0.01"/><up_axis>Y_UP</up_axis></asset>
 <library_geometries><geometry id="g"><mesh>
-<source id="p"><float_array id="pa" count=")" + std::to_string(3 * mesh.vertices.size()) + R"(">)" + positions +
+<source id="p"><float_array id="pa" count=")" +
+         std::to_string(3 * mesh.vertices.size()) + R"(">)" + positions +
          R"(</float_array><technique_common><accessor source="#pa" count=")" + nv +
          R"(" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
 <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
-<triangles count=")" + std::to_string(mesh.triangles.size()) + R"("><input semantic="VERTEX" source="#v" offset="0"/><p>)" + indices +
+<triangles count=")" +
+         std::to_string(mesh.triangles.size()) +
+         R"("><input semantic="VERTEX" source="#v" offset="0"/><p>)" + indices +
          R"(</p></triangles></mesh></geometry></library_geometries>
 <library_visual_scenes><visual_scene id="s"><node id="n"><instance_geometry url="#g"/></node></visual_scene></library_visual_scenes>
 <scene><instance_visual_scene url="#s"/></scene></COLLADA>
@@ -87,13 +94,15 @@ TEST(MeshLoader, ReadsStlObjAndCollada) {
   testing::ScratchFolder scratch;
   const TriangleMesh shape = test_shape();
   for (const std::string name : {"shape.stl", "shape.STL", "shape.obj"}) {
-    const std::string file = scratch.write(name, name.back() == 'j' ? obj_text(shape) : binary_stl(shape));
+    const std::string file =
+        scratch.write(name, name.back() == 'j' ? obj_text(shape) : binary_stl(shape));
     const TriangleMesh mesh = load_mesh(file, Eigen::Vector3d::Ones(), kWhere);
     EXPECT_EQ(mesh.triangle_count(), 12u) << name;
     EXPECT_NEAR(signed_volume(mesh), 6.0, 1e-5) << name;
     EXPECT_LT((mesh.bounds().max() - Eigen::Vector3d(1, 2, 3)).norm(), 1e-5) << name;
   }
-  const TriangleMesh dae = load_mesh(scratch.write("shape.dae", dae_text(shape)), Eigen::Vector3d::Ones(), kWhere);
+  const TriangleMesh dae =
+      load_mesh(scratch.write("shape.dae", dae_text(shape)), Eigen::Vector3d::Ones(), kWhere);
   EXPECT_EQ(dae.triangle_count(), 12u);
   EXPECT_LT((dae.bounds().max() - Eigen::Vector3d(0.01, 0.02, 0.03)).norm(), 1e-7)
       << "expected centimetres applied and z kept up: " << dae.bounds().max().transpose();
@@ -124,7 +133,8 @@ TEST(MeshLoader, RejectsMissingEmptyAndNonFiniteMeshes) {
   const std::string missing = message(scratch.path() + "/nothing.stl");
   EXPECT_NE(missing.find("scene.yaml:7: robot.mesh"), std::string::npos) << missing;
   EXPECT_NE(missing.find("does not exist"), std::string::npos) << missing;
-  const std::string points = message(scratch.write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1\nl 1 2\n"));
+  const std::string points =
+      message(scratch.write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1\nl 1 2\n"));
   EXPECT_NE(points.find("robot.mesh"), std::string::npos) << points;
   EXPECT_NE(points.find("points.obj"), std::string::npos) << points;
 
@@ -148,7 +158,8 @@ TEST(MeshLoader, PrimitivesContainTheExactShape) {
   auto min_face_distance = [](const TriangleMesh& mesh, const Eigen::Vector3d& axis_mask) {
     double smallest = 1e9;
     for (const Eigen::Vector3i& t : mesh.triangles) {
-      const Eigen::Vector3d a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
+      const Eigen::Vector3d a = mesh.vertices[t[0]], b = mesh.vertices[t[1]],
+                            c = mesh.vertices[t[2]];
       const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
       EXPECT_GT(n.dot(a), 0) << "face points inward";
       if (n.cwiseProduct(axis_mask).norm() > 0.99) smallest = std::min(smallest, n.dot(a));

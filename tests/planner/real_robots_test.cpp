@@ -23,8 +23,8 @@ struct RealRobot {
 };
 
 // Skips the calling test when the shared data is not there.
-#define REQUIRE_SHARED_DATA(data)                                               \
-  const std::string data = testing::shared_data();                             \
+#define REQUIRE_SHARED_DATA(data)                  \
+  const std::string data = testing::shared_data(); \
   if (data.empty()) GTEST_SKIP() << "no ../shared/data (set GPLANNER_SHARED_DATA)"
 
 RealRobot pr2(const std::string& data) {
@@ -35,7 +35,8 @@ RealRobot pr2(const std::string& data) {
 
 RealRobot talos(const std::string& data) {
   const std::string root = data + "/example-robot-data/robots/talos_data";
-  return {root + "/robots/talos_reduced.urdf", root + "/srdf/talos.srdf",
+  return {root + "/robots/talos_reduced.urdf",
+          root + "/srdf/talos.srdf",
           {{"example-robot-data", data + "/example-robot-data"}}};
 }
 
@@ -81,10 +82,9 @@ TEST(RealRobots, TalosLoadsWithItsQuirks) {
   EXPECT_GE(notices.size(), 2u);
   for (const std::string& notice : notices) EXPECT_NE(notice.find("talos.srdf"), std::string::npos);
   EXPECT_GT(robot.triangle_count(), 10000u);
-  std::cout << "Talos: " << robot.links.size() << " links, " << robot.joints.size()
-            << " joints, " << robot.triangle_count() << " triangles, "
-            << robot.disabled_pairs.size() << " disabled pairs, " << robot.checked_pairs().size()
-            << " checked\n";
+  std::cout << "Talos: " << robot.links.size() << " links, " << robot.joints.size() << " joints, "
+            << robot.triangle_count() << " triangles, " << robot.disabled_pairs.size()
+            << " disabled pairs, " << robot.checked_pairs().size() << " checked\n";
 }
 
 // A scene around a real robot: no obstacles but a floor, a rest pose as start and goal.
@@ -93,10 +93,11 @@ std::string write_scene(const testing::ScratchFolder& scratch, const RealRobot& 
   std::string packages;
   for (const auto& [name, folder] : files.packages) packages += name + ": '" + folder + "', ";
   packages.resize(packages.size() - 2);
-  return scratch.write("real.yaml", "robot:\n  urdf: '" + files.urdf + "'\n  srdf: '" + files.srdf +
-                                        "'\n  packages: {" + packages + "}\n" + robot_lines +
-                                        "obstacles:\n  - box: [20, 20, 0.1]\n    pose: {xyz: [0, 0, -2]}\n" +
-                                        start_goal);
+  return scratch.write("real.yaml",
+                       "robot:\n  urdf: '" + files.urdf + "'\n  srdf: '" + files.srdf +
+                           "'\n  packages: {" + packages + "}\n" + robot_lines +
+                           "obstacles:\n  - box: [20, 20, 0.1]\n    pose: {xyz: [0, 0, -2]}\n" +
+                           start_goal);
 }
 
 // Checks a seeded random batch: some configurations collide (with the robot itself:
@@ -114,14 +115,16 @@ void answers_a_batch(const Scene& scene) {
   for (std::uint8_t v : a) hits += v;
   EXPECT_GT(hits, 0) << "random joint values should sometimes self-collide";
   EXPECT_LT(hits, n);
-  std::cout << scene.robot.name << ": " << hits << " of " << n << " random configurations collide\n";
+  std::cout << scene.robot.name << ": " << hits << " of " << n
+            << " random configurations collide\n";
 }
 
 TEST(RealRobots, Pr2AnswersABatch) {
   REQUIRE_SHARED_DATA(data);
   testing::ScratchFolder scratch;
-  const std::string arm = "_shoulder_pan_joint, _shoulder_lift_joint, _upper_arm_roll_joint, "
-                          "_elbow_flex_joint, _forearm_roll_joint, _wrist_flex_joint, _wrist_roll_joint";
+  const std::string arm =
+      "_shoulder_pan_joint, _shoulder_lift_joint, _upper_arm_roll_joint, "
+      "_elbow_flex_joint, _forearm_roll_joint, _wrist_flex_joint, _wrist_roll_joint";
   std::string joints = "torso_lift_joint";
   for (const char* side : {"r", "l"}) {
     std::string list = arm;
@@ -130,11 +133,21 @@ TEST(RealRobots, Pr2AnswersABatch) {
     }
     joints += ", " + list;
   }
-  const std::string file = write_scene(
-      scratch, pr2(data), "  base: planar\n  planned_joints: [" + joints + "]\n",
-      "bounds: {min: [-1, -1], max: [1, 1]}\n"
-      "start: {base: {xy: [0, 0], theta: 0}, joints: {torso_lift_joint: 0.1, r_shoulder_pan_joint: 0, r_shoulder_lift_joint: 0, r_upper_arm_roll_joint: 0, r_elbow_flex_joint: -0.5, r_forearm_roll_joint: 0, r_wrist_flex_joint: -0.5, r_wrist_roll_joint: 0, l_shoulder_pan_joint: 0, l_shoulder_lift_joint: 0, l_upper_arm_roll_joint: 0, l_elbow_flex_joint: -0.5, l_forearm_roll_joint: 0, l_wrist_flex_joint: -0.5, l_wrist_roll_joint: 0}}\n"
-      "goal: {base: {xy: [0.5, 0], theta: 1}, joints: {torso_lift_joint: 0.2, r_shoulder_pan_joint: -0.5, r_shoulder_lift_joint: 0, r_upper_arm_roll_joint: 0, r_elbow_flex_joint: -0.5, r_forearm_roll_joint: 0, r_wrist_flex_joint: -0.5, r_wrist_roll_joint: 0, l_shoulder_pan_joint: 0.5, l_shoulder_lift_joint: 0, l_upper_arm_roll_joint: 0, l_elbow_flex_joint: -0.5, l_forearm_roll_joint: 0, l_wrist_flex_joint: -0.5, l_wrist_roll_joint: 0}}\n");
+  const std::string file =
+      write_scene(scratch, pr2(data), "  base: planar\n  planned_joints: [" + joints + "]\n",
+                  "bounds: {min: [-1, -1], max: [1, 1]}\n"
+                  "start: {base: {xy: [0, 0], theta: 0}, joints: {torso_lift_joint: 0.1, "
+                  "r_shoulder_pan_joint: 0, r_shoulder_lift_joint: 0, r_upper_arm_roll_joint: 0, "
+                  "r_elbow_flex_joint: -0.5, r_forearm_roll_joint: 0, r_wrist_flex_joint: -0.5, "
+                  "r_wrist_roll_joint: 0, l_shoulder_pan_joint: 0, l_shoulder_lift_joint: 0, "
+                  "l_upper_arm_roll_joint: 0, l_elbow_flex_joint: -0.5, l_forearm_roll_joint: 0, "
+                  "l_wrist_flex_joint: -0.5, l_wrist_roll_joint: 0}}\n"
+                  "goal: {base: {xy: [0.5, 0], theta: 1}, joints: {torso_lift_joint: 0.2, "
+                  "r_shoulder_pan_joint: -0.5, r_shoulder_lift_joint: 0, r_upper_arm_roll_joint: "
+                  "0, r_elbow_flex_joint: -0.5, r_forearm_roll_joint: 0, r_wrist_flex_joint: -0.5, "
+                  "r_wrist_roll_joint: 0, l_shoulder_pan_joint: 0.5, l_shoulder_lift_joint: 0, "
+                  "l_upper_arm_roll_joint: 0, l_elbow_flex_joint: -0.5, l_forearm_roll_joint: 0, "
+                  "l_wrist_flex_joint: -0.5, l_wrist_roll_joint: 0}}\n");
   const Scene scene = load_scene(file);
   EXPECT_EQ(scene.space.width(), 18);
   EXPECT_EQ(scene.space.dof(), 18);
@@ -150,20 +163,25 @@ TEST(RealRobots, TalosAnswersABatch) {
   // Plan every joint with a value, found from the URDF itself.
   const RobotModel robot = load_urdf(files.urdf, files.packages, {"test", 0, "urdf"});
   // At the zero pose Talos's hands rest inside its thighs; lift the arms sideways.
-  const std::map<std::string, double> lifted = {{"arm_left_2_joint", 0.4}, {"arm_right_2_joint", -0.4}};
+  const std::map<std::string, double> lifted = {{"arm_left_2_joint", 0.4},
+                                                {"arm_right_2_joint", -0.4}};
   std::string names, zeros;
   for (const Joint& joint : robot.joints) {
     if (!joint.is_single_dof() || joint.mimic_joint >= 0) continue;
     names += (names.empty() ? "" : ", ") + joint.name;
     const auto it = lifted.find(joint.name);
-    const double rest = it != lifted.end() ? it->second : std::min(std::max(0.0, joint.lower), joint.upper);
+    const double rest =
+        it != lifted.end() ? it->second : std::min(std::max(0.0, joint.lower), joint.upper);
     zeros += (zeros.empty() ? "" : ", ") + joint.name + ": " + std::to_string(rest);
   }
-  const std::string file = write_scene(
-      scratch, files, "  base: floating\n  planned_joints: [" + names + "]\n",
-      "bounds: {min: [-1, -1, 0.5], max: [1, 1, 1.5]}\n"
-      "start: {base: {xyz: [0, 0, 1], quat_wxyz: [1, 0, 0, 0]}, joints: {" + zeros + "}}\n"
-      "goal: {base: {xyz: [0.5, 0, 1], quat_wxyz: [1, 0, 0, 0]}, joints: {" + zeros + "}}\n");
+  const std::string file =
+      write_scene(scratch, files, "  base: floating\n  planned_joints: [" + names + "]\n",
+                  "bounds: {min: [-1, -1, 0.5], max: [1, 1, 1.5]}\n"
+                  "start: {base: {xyz: [0, 0, 1], quat_wxyz: [1, 0, 0, 0]}, joints: {" +
+                      zeros +
+                      "}}\n"
+                      "goal: {base: {xyz: [0.5, 0, 1], quat_wxyz: [1, 0, 0, 0]}, joints: {" +
+                      zeros + "}}\n");
   const Scene scene = load_scene(file);
   EXPECT_EQ(scene.space.dof(), 38);
   FclChecker checker(scene);

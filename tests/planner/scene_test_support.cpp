@@ -21,7 +21,8 @@ std::vector<std::string> shipped_scene_files() {
   return files;
 }
 
-std::vector<float> sample_configurations(const Scene& scene, std::size_t n, unsigned long long seed) {
+std::vector<float> sample_configurations(const Scene& scene, std::size_t n,
+                                         unsigned long long seed) {
   const std::size_t width = scene.space.width();
   std::vector<float> q(n * width);
   std::mt19937_64 rng(seed);

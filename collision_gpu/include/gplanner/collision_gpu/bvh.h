@@ -49,7 +49,8 @@ Bvh build_bvh(const double* vertices, int vertex_count, const int* triangles, in
 GP_HD geometry::Obb<float> node_box(const BvhNode& node) {
   geometry::Obb<float> box;
   box.center = {node.center[0], node.center[1], node.center[2]};
-  for (int i = 0; i < 3; ++i) box.axes.r[i] = {node.axes[3 * i], node.axes[3 * i + 1], node.axes[3 * i + 2]};
+  for (int i = 0; i < 3; ++i)
+    box.axes.r[i] = {node.axes[3 * i], node.axes[3 * i + 1], node.axes[3 * i + 2]};
   box.extent = {node.extent[0], node.extent[1], node.extent[2]};
   return box;
 }

@@ -25,17 +25,17 @@ struct LinkKinematics {
   float multiplier = 0;
   float offset = 0;
   float X_PJ[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};  // rotation (row-major), translation
-  float axis[3] = {1, 0, 0};                             // unit, in the joint frame
+  float axis[3] = {1, 0, 0};                              // unit, in the joint frame
 };
 
 struct CollisionModel {
   BaseKind base = BaseKind::kFixed;
   float X_WB[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};  // fixed base / plane of a planar base
-  std::int32_t width = 0;                                // floats per configuration
-  std::vector<LinkKinematics> links;                     // parents before children
-  std::vector<Bvh> link_bvhs;                            // per link (empty: no geometry)
-  Bvh environment;                                       // in the world frame
-  std::vector<std::int32_t> pair_a, pair_b;              // link pairs checked for self-collision
+  std::int32_t width = 0;                                 // floats per configuration
+  std::vector<LinkKinematics> links;                      // parents before children
+  std::vector<Bvh> link_bvhs;                             // per link (empty: no geometry)
+  Bvh environment;                                        // in the world frame
+  std::vector<std::int32_t> pair_a, pair_b;               // link pairs checked for self-collision
   // Leaf tests report triangles closer than this as colliding (half the tolerance band
   // delta, so that rounding stays inside the band); BV tests use a margin of twice it.
   float threshold = 0;

@@ -16,9 +16,9 @@ struct CheckerComparison {
   // A checker said free where FCL finds a collision: a miss, never allowed.
   std::size_t missed_collisions = 0;
   // A checker said collision where FCL finds none: allowed only within the band.
-  std::size_t extra_within_band = 0;   // FCL distance < delta
-  std::size_t extra_outside_band = 0;  // FCL distance >= delta
-  double largest_extra_distance = 0;   // metres, over extra collisions
+  std::size_t extra_within_band = 0;           // FCL distance < delta
+  std::size_t extra_outside_band = 0;          // FCL distance >= delta
+  double largest_extra_distance = 0;           // metres, over extra collisions
   std::vector<std::size_t> outside_band_rows;  // the first few, for reports
 };
 

@@ -11,7 +11,7 @@
 namespace gplanner {
 
 struct CheckerOptions {
-  int threads = 0;  // host threads for CPU backends; 0: all cores
+  int threads = 0;        // host threads for CPU backends; 0: all cores
   GpuCheckerOptions gpu;  // traversal and memory cap of the gpu backend
 };
 

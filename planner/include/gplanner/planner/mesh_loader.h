@@ -19,7 +19,6 @@ TriangleMesh load_mesh(const std::string& path, const Eigen::Vector3d& scale,
 
 // Checks a mesh handed over from elsewhere: finite coordinates, indices in range, at
 // least one triangle; drops triangles that repeat a vertex index. Throws InputError.
-void validate_mesh(TriangleMesh* mesh, const SourceLocation& where,
-                   const std::string& what);
+void validate_mesh(TriangleMesh* mesh, const SourceLocation& where, const std::string& what);
 
 }  // namespace gplanner

@@ -22,7 +22,7 @@ struct Joint {
   int parent_link = -1;
   int child_link = -1;
   Eigen::Isometry3d X_PJ = Eigen::Isometry3d::Identity();  // joint frame in parent link
-  Eigen::Vector3d axis_J = Eigen::Vector3d::UnitX();      // unit axis in the joint frame
+  Eigen::Vector3d axis_J = Eigen::Vector3d::UnitX();       // unit axis in the joint frame
   // Position limits (radians or metres). Continuous joints: [-pi, pi], wrapping.
   double lower = 0;
   double upper = 0;

@@ -28,7 +28,7 @@ TriangleMesh transformed(const TriangleMesh& mesh_A, const Eigen::Isometry3d& X_
 
 // Primitives, centred at the origin. Curved ones are tessellated so that the polyhedron
 // contains the exact shape (vertices pushed out), keeping collision checks conservative.
-TriangleMesh make_box(const Eigen::Vector3d& size);                 // full side lengths
+TriangleMesh make_box(const Eigen::Vector3d& size);  // full side lengths
 TriangleMesh make_sphere(double radius, int rings = 12, int segments = 24);
 TriangleMesh make_cylinder(double radius, double length, int segments = 24);  // axis z
 

@@ -33,6 +33,6 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
 // link the URDF lacks is an InputError. Returns the number of disable_collisions
 // elements read.
 int apply_srdf(RobotModel* robot, const std::string& srdf_path,
-                const SourceLocation& referenced_from, std::vector<std::string>* notices);
+               const SourceLocation& referenced_from, std::vector<std::string>* notices);
 
 }  // namespace gplanner

@@ -46,7 +46,8 @@ GP_HD void link_poses(const CollisionModelView& m, const float* q, Xf* X_WL) {
     const LinkKinematics& link = m.links[l];
     Xf X_PL = load_transform(link.X_PJ);
     if (link.motion != LinkMotion::kFixed) {
-      const float value = link.multiplier * (link.source >= 0 ? q[link.source] : 0.0f) + link.offset;
+      const float value =
+          link.multiplier * (link.source >= 0 ? q[link.source] : 0.0f) + link.offset;
       const V3f axis{link.axis[0], link.axis[1], link.axis[2]};
       if (link.motion == LinkMotion::kRevolute) {
         X_PL.R = X_PL.R * geometry::axis_angle(axis, value);
@@ -62,7 +63,8 @@ GP_HD geometry::Vec3<double> widen(V3f p) { return {double(p.x), double(p.y), do
 
 // The leaf test: triangle ta of body A and tb of body B (moved into A's frame by
 // X_AB), compared in double so that only the float poses round.
-GP_HD bool leaf_collides(const BvhTriangle& ta, const BvhTriangle& tb, const Xf& X_AB, float threshold) {
+GP_HD bool leaf_collides(const BvhTriangle& ta, const BvhTriangle& tb, const Xf& X_AB,
+                         float threshold) {
   geometry::Vec3<double> a[3], b[3];
   for (int k = 0; k < 3; ++k) {
     a[k] = widen(V3f{ta.v[k][0], ta.v[k][1], ta.v[k][2]});
@@ -75,7 +77,8 @@ GP_HD bool leaf_collides(const BvhTriangle& ta, const BvhTriangle& tb, const Xf&
 // their bounding spheres first, which reject most far pairs for a few flops, then the
 // separating-axis test.
 GP_HD bool nodes_overlap(const BvhNode& na, const BvhNode& nb, const Xf& X_AB, float margin) {
-  const V3f d = X_AB * V3f{nb.center[0], nb.center[1], nb.center[2]} - V3f{na.center[0], na.center[1], na.center[2]};
+  const V3f d = X_AB * V3f{nb.center[0], nb.center[1], nb.center[2]} -
+                V3f{na.center[0], na.center[1], na.center[2]};
   const float reach = na.radius + nb.radius + margin;
   if (geometry::dot(d, d) > reach * reach) return false;
   return geometry::obbs_overlap(node_box(na), geometry::transformed(node_box(nb), X_AB), margin);
@@ -98,8 +101,9 @@ struct NodePair {
 // The two child pairs of an overlapping inner node pair (ia, ib): the larger box is
 // split, and the child whose centre lies nearer the other box's centre comes first,
 // being the likelier to hold a collision, so that a query stops sooner.
-GP_HD void split_pair(const CollisionModelView& m, BodyRange a, BodyRange b, const Xf& X_AB, int ia, int ib,
-                      const BvhNode& na, const BvhNode& nb, NodePair* first, NodePair* second) {
+GP_HD void split_pair(const CollisionModelView& m, BodyRange a, BodyRange b, const Xf& X_AB, int ia,
+                      int ib, const BvhNode& na, const BvhNode& nb, NodePair* first,
+                      NodePair* second) {
   if (!na.is_leaf() && (nb.is_leaf() || box_size(na) >= box_size(nb))) {
     const V3f c = X_AB * V3f{nb.center[0], nb.center[1], nb.center[2]};
     const bool swap = squared_distance(m.nodes[a.node_offset + na.child + 1], c) <
@@ -141,8 +145,12 @@ GP_HD bool bodies_collide(const CollisionModelView& m, BodyRange a, BodyRange b,
     }
     NodePair first, second;
     split_pair(m, a, b, X_AB, ia, ib, na, nb, &first, &second);
-    stack_a[top] = second.a; stack_b[top] = second.b; ++top;
-    stack_a[top] = first.a;  stack_b[top] = first.b;  ++top;
+    stack_a[top] = second.a;
+    stack_b[top] = second.b;
+    ++top;
+    stack_a[top] = first.a;
+    stack_b[top] = first.b;
+    ++top;
   }
   return false;
 }
@@ -170,7 +178,8 @@ GP_HD bool pair_may_touch(const CollisionModelView& m, int p, const Xf* X_WL) {
 
 // The whole query: true when configuration q (shape: [m.width]) collides with the
 // environment or with itself. X_WL: scratch for m.link_count poses.
-GP_HD bool query_collides(const CollisionModelView& m, const float* q, Xf* X_WL, TraversalCounts* counts) {
+GP_HD bool query_collides(const CollisionModelView& m, const float* q, Xf* X_WL,
+                          TraversalCounts* counts) {
   link_poses(m, q, X_WL);
   for (int l = 0; l < m.link_count; ++l) {
     if (link_may_touch_environment(m, l, X_WL[l]) &&
@@ -181,7 +190,8 @@ GP_HD bool query_collides(const CollisionModelView& m, const float* q, Xf* X_WL,
   for (int p = 0; p < m.pair_count; ++p) {
     if (!pair_may_touch(m, p, X_WL)) continue;
     const int la = m.pair_a[p], lb = m.pair_b[p];
-    if (bodies_collide(m, m.link_bodies[la], m.link_bodies[lb], geometry::inverse(X_WL[la]) * X_WL[lb], counts)) {
+    if (bodies_collide(m, m.link_bodies[la], m.link_bodies[lb],
+                       geometry::inverse(X_WL[la]) * X_WL[lb], counts)) {
       return true;
     }
   }

@@ -15,7 +15,8 @@ struct Obb {
 };
 
 // A box given in frame B, expressed in frame A through X_AB.
-template <typename T> GP_HD Obb<T> transformed(const Obb<T>& box_B, const Transform<T>& X_AB) {
+template <typename T>
+GP_HD Obb<T> transformed(const Obb<T>& box_B, const Transform<T>& X_AB) {
   return {X_AB * box_B.center, X_AB.R * box_B.axes, box_B.extent};
 }
 
@@ -23,7 +24,8 @@ template <typename T> GP_HD Obb<T> transformed(const Obb<T>& box_B, const Transf
 // by margin / 2 on every side). Near-parallel edge axes are handled by padding |R|
 // with a small epsilon, as OBBTree does, so that a degenerate cross product never
 // separates falsely.
-template <typename T> GP_HD bool obbs_overlap(const Obb<T>& a, const Obb<T>& b, T margin) {
+template <typename T>
+GP_HD bool obbs_overlap(const Obb<T>& a, const Obb<T>& b, T margin) {
   const T kEpsilon = T(1e-6);
   const T h = margin / 2;
   const T ea[3] = {a.extent.x + h, a.extent.y + h, a.extent.z + h};

@@ -9,7 +9,10 @@
 
 namespace gplanner::geometry {
 
-template <typename T> GP_HD T clamp01(T v) { return v < T(0) ? T(0) : (v > T(1) ? T(1) : v); }
+template <typename T>
+GP_HD T clamp01(T v) {
+  return v < T(0) ? T(0) : (v > T(1) ? T(1) : v);
+}
 
 // Squared distance between segments p1-q1 and p2-q2 (Ericson, Real-Time Collision
 // Detection, 5.1.9), robust to zero-length segments.
@@ -61,18 +64,26 @@ GP_HD bool projects_inside(Vec3<T> x, Vec3<T> a, Vec3<T> b, Vec3<T> c, Vec3<T> n
 // an edge.
 template <typename T>
 struct TrianglePlane {
-  Vec3<T> n;         // unnormalised normal
-  T length;          // |n|
-  T error;           // bound on |n - exact normal|
-  bool reliable;     // the plane may be used for face tests
-  T thickness;       // for unreliable planes: how far the face strays from its edges
+  Vec3<T> n;      // unnormalised normal
+  T length;       // |n|
+  T error;        // bound on |n - exact normal|
+  bool reliable;  // the plane may be used for face tests
+  T thickness;    // for unreliable planes: how far the face strays from its edges
 };
 
-template <typename T> GP_HD T machine_epsilon();
-template <> GP_HD float machine_epsilon<float>() { return 1.1920929e-7f; }
-template <> GP_HD double machine_epsilon<double>() { return 2.220446049250313e-16; }
+template <typename T>
+GP_HD T machine_epsilon();
+template <>
+GP_HD float machine_epsilon<float>() {
+  return 1.1920929e-7f;
+}
+template <>
+GP_HD double machine_epsilon<double>() {
+  return 2.220446049250313e-16;
+}
 
-template <typename T> GP_HD TrianglePlane<T> triangle_plane(const Vec3<T> v[3]) {
+template <typename T>
+GP_HD TrianglePlane<T> triangle_plane(const Vec3<T> v[3]) {
   const Vec3<T> e1 = v[1] - v[0], e2 = v[2] - v[0], e3 = v[2] - v[1];
   TrianglePlane<T> plane;
   plane.n = cross(e1, e2);
@@ -82,14 +93,16 @@ template <typename T> GP_HD TrianglePlane<T> triangle_plane(const Vec3<T> v[3]) 
   plane.reliable = plane.length > T(64) * plane.error;
   // Twice the area over the longest edge is the smallest height.
   const T longest = l1 > l2 ? (l1 > l3 ? l1 : l3) : (l2 > l3 ? l2 : l3);
-  plane.thickness = plane.reliable || !(longest > 0) ? T(0) : (plane.length + plane.error) / longest;
+  plane.thickness =
+      plane.reliable || !(longest > 0) ? T(0) : (plane.length + plane.error) / longest;
   return plane;
 }
 
 // Whether all of triangle p lies farther than `threshold` on one side of q's plane,
 // allowing for the rounding of the plane and of the distances.
 template <typename T>
-GP_HD bool beyond_plane(const Vec3<T> p[3], const Vec3<T> q0, const TrianglePlane<T>& plane, T threshold) {
+GP_HD bool beyond_plane(const Vec3<T> p[3], const Vec3<T> q0, const TrianglePlane<T>& plane,
+                        T threshold) {
   if (!plane.reliable) return false;
   const T slope = plane.error + T(4) * machine_epsilon<T>() * plane.length;
   int above = 0, below = 0;
@@ -107,7 +120,8 @@ GP_HD bool beyond_plane(const Vec3<T> p[3], const Vec3<T> q0, const TrianglePlan
 // a vertex of p within `threshold` above or below q's face, or an edge of p crossing
 // it. Edge-against-edge proximity is tested separately.
 template <typename T>
-GP_HD bool touches_face(const Vec3<T> p[3], const Vec3<T> q[3], const TrianglePlane<T>& plane, T threshold) {
+GP_HD bool touches_face(const Vec3<T> p[3], const Vec3<T> q[3], const TrianglePlane<T>& plane,
+                        T threshold) {
   if (!plane.reliable) return false;  // the edges stand for the face
   const T inv_n = T(1) / plane.length;
   const T slope = (plane.error + T(4) * machine_epsilon<T>() * plane.length) * inv_n;
@@ -141,7 +155,8 @@ GP_HD bool triangles_within(const Vec3<T> a[3], const Vec3<T> b[3], T threshold)
   const T threshold2 = edge_threshold * edge_threshold;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
-      if (segment_segment_squared_distance(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3]) <= threshold2) {
+      if (segment_segment_squared_distance(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3]) <=
+          threshold2) {
         return true;
       }
     }

@@ -127,6 +127,35 @@ TEST(TriangleDistance, FloatNeverMissesAtSmallThresholds) {
   agrees_with_fcl_on_distance<float>(2e-5, 0.01);
 }
 
+// The float plane test used before the double leaf test never rejects a pair within
+// the threshold, and rejects most pairs well beyond it.
+TEST(TriangleDistance, FloatPlaneRejectionIsConservative) {
+  std::mt19937_64 rng(77);
+  const double threshold = 2e-5;
+  int far = 0, rejected_far = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const TrianglePair pair = random_pair(&rng);
+    if (fcl_distance(pair) < 1e-9) continue;
+    for (const double factor : {0.0, 0.5, 0.99, 2.0, 100.0, 1e4}) {
+      const TrianglePair moved = at_distance(pair, factor * threshold);
+      Vec3<float> a[3], b[3];
+      for (int k = 0; k < 3; ++k) {
+        a[k] = to_vec3<float>(moved.a[k]);
+        b[k] = to_vec3<float>(moved.b[k]);
+      }
+      const bool rejected = beyond_plane(b, a[0], triangle_plane(a), float(threshold)) ||
+                            beyond_plane(a, b[0], triangle_plane(b), float(threshold));
+      if (fcl_distance(moved) <= threshold) {
+        ASSERT_FALSE(rejected) << "pair " << i << " within the threshold rejected";
+      } else if (factor >= 100) {
+        ++far;
+        rejected_far += rejected;
+      }
+    }
+  }
+  EXPECT_GT(rejected_far, far / 4) << rejected_far << " of " << far;
+}
+
 TEST(TriangleDistance, SegmentDistancesOnKnownCases) {
   const Vec3<double> o{0, 0, 0}, x{1, 0, 0};
   EXPECT_DOUBLE_EQ(

@@ -62,13 +62,25 @@ GP_HD void link_poses(const CollisionModelView& m, const float* q, Xf* X_WL) {
 GP_HD geometry::Vec3<double> widen(V3f p) { return {double(p.x), double(p.y), double(p.z)}; }
 
 // The leaf test: triangle ta of body A and tb of body B (moved into A's frame by
-// X_AB), compared in double so that only the float poses round.
+// X_AB), decided in double so that only the float poses round.
 GP_HD bool leaf_collides(const BvhTriangle& ta, const BvhTriangle& tb, const Xf& X_AB,
                          float threshold) {
+  V3f fa[3], fb[3];
+  for (int k = 0; k < 3; ++k) {
+    fa[k] = V3f{ta.v[k][0], ta.v[k][1], ta.v[k][2]};
+    fb[k] = X_AB * V3f{tb.v[k][0], tb.v[k][1], tb.v[k][2]};
+  }
+  // Most leaf pairs lie apart on one side of a face: float finds that for less, with
+  // its rounding bounded (beyond_plane only rejects beyond the error), and double
+  // decides everything else.
+  if (geometry::beyond_plane(fb, fa[0], geometry::triangle_plane(fa), threshold) ||
+      geometry::beyond_plane(fa, fb[0], geometry::triangle_plane(fb), threshold)) {
+    return false;
+  }
   geometry::Vec3<double> a[3], b[3];
   for (int k = 0; k < 3; ++k) {
-    a[k] = widen(V3f{ta.v[k][0], ta.v[k][1], ta.v[k][2]});
-    b[k] = widen(X_AB * V3f{tb.v[k][0], tb.v[k][1], tb.v[k][2]});
+    a[k] = widen(fa[k]);
+    b[k] = widen(fb[k]);
   }
   return geometry::triangles_within(a, b, double(threshold));
 }

@@ -15,7 +15,13 @@ namespace fs = std::filesystem;
 
 std::string project_root() {
   const char* root = std::getenv("GPLANNER_ROOT");
-  return root && *root ? root : GPLANNER_SOURCE_DIR;
+  if (root && *root) return root;
+  // Built here, run elsewhere (the GPU machine) from a copy of the project: the source
+  // folder named at build time is not there, the working folder is.
+  if (!fs::is_directory(fs::path(GPLANNER_SOURCE_DIR) / "scenes") && fs::is_directory("scenes")) {
+    return fs::current_path().string();
+  }
+  return GPLANNER_SOURCE_DIR;
 }
 
 std::string shared_data() {

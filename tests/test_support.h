@@ -6,7 +6,8 @@
 
 namespace gplanner::testing {
 
-// The project root: $GPLANNER_ROOT, else the source folder this binary was built from.
+// The project root: $GPLANNER_ROOT, else the source folder this binary was built from,
+// else (when that folder is gone) the working folder if it holds scenes/.
 std::string project_root();
 
 // The real robot data: $GPLANNER_SHARED_DATA, else ../shared/data beside the project.

@@ -83,6 +83,12 @@ INSTANTIATE_TEST_SUITE_P(Scenes, GpuMatchesCpu, ::testing::ValuesIn(all_cases())
                          });
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(GpuMatchesCpu);
 
+// The parameterised GPU cases above exist only if the scenes are found: run from the
+// project root or set GPLANNER_ROOT.
+TEST(GpuChecker, FindsTheShippedScenes) {
+  EXPECT_GE(testing::shipped_scene_files().size(), 7u) << "scenes/ not found under " << testing::project_root();
+}
+
 TEST(GpuChecker, ChunksBatchesOverTheMemoryCap) {
   REQUIRE_GPU();
   const Scene scene = load_scene(testing::project_root() + "/scenes/humanoid.yaml");

@@ -597,12 +597,16 @@ struct GpuBatchChecker::Impl {
     std::size_t job_capacity = 0, task_capacity = 0, children_capacity = 0, leaf_capacity = 0;
     if (options.traversal == Traversal::kBalanced) {
       const std::size_t bodies = static_cast<std::size_t>(view.link_count) + view.pair_count;
-      job_capacity =
-          std::min(chunk * bodies, static_cast<std::size_t>(0.3 * memory_cap) / sizeof(Job));
-      task_capacity =
-          std::max<std::size_t>(2 * job_capacity + 4 * (kTaskSteps + 1),
-                                static_cast<std::size_t>(0.25 * memory_cap) / sizeof(Task));
-      task_capacity = std::min<std::size_t>(task_capacity, 1u << 30);
+      // Shares of the memory cap, each also bounded outright (16M jobs, 128M queued
+      // tasks: far above what the shipped scenes reach) so that a large free memory is
+      // not claimed for nothing. A chunk whose jobs overflow is rerun at half the size.
+      job_capacity = std::min({chunk * bodies,
+                               static_cast<std::size_t>(0.3 * memory_cap) / sizeof(Job),
+                               std::size_t(1) << 24});
+      task_capacity = std::max<std::size_t>(
+          2 * job_capacity + 4 * (kTaskSteps + 1),
+          std::min(static_cast<std::size_t>(0.25 * memory_cap) / sizeof(Task),
+                   std::size_t(1) << 27));
       jobs.reserve(job_capacity);
       tasks.reserve(task_capacity);
       children_capacity = std::min<std::size_t>(task_capacity, std::size_t(kTaskSteps + 1) << 20);

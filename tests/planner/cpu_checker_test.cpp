@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "gplanner/planner/checker_comparison.h"
 #include "gplanner/planner/scene_collision_model.h"
 #include "planner/scene_test_support.h"
@@ -46,12 +48,33 @@ INSTANTIATE_TEST_SUITE_P(Scenes, CpuAgreesWithFcl,
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(CpuAgreesWithFcl);
 
 TEST(CpuChecker, DropsOnlyUnreachableObstacleTriangles) {
-  // Every dropped triangle lies beyond the robot's reach: re-adding them changes no
-  // verdict. Checked on the humanoid scene, whose room extends past its bounds.
-  const std::string file = testing::project_root() + "/scenes/humanoid.yaml";
+  // A unit cube robot (reach sqrt(3)/2 from its centre) whose centre stays in
+  // [-1, 1]^3: it can touch nothing beyond 1 + 0.866 on any axis.
+  testing::ScratchFolder scratch;
+  scratch.write("cube.obj",
+                "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv -0.5 0.5 -0.5\nv 0.5 0.5 -0.5\n"
+                "v -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv -0.5 0.5 0.5\nv 0.5 0.5 0.5\n"
+                "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\n"
+                "f 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n");
+  const std::string file = scratch.write("scene.yaml", R"(robot: {mesh: cube.obj}
+obstacles:
+  - {name: near, box: [0.2, 0.2, 0.2], pose: {xyz: [0, 0, 1.5]}}
+  - {name: far, box: [1, 1, 1], pose: {xyz: [10, 0, 0]}}
+  - {name: straddling, box: [1, 1, 1], pose: {xyz: [2, 0, 0]}}
+bounds: {min: [-1, -1, -1], max: [1, 1, 1]}
+start: {base: {xyz: [-0.5, 0, -0.5], quat_wxyz: [1, 0, 0, 0]}}
+goal: {base: {xyz: [0.5, 0, -0.5], quat_wxyz: [1, 0, 0, 0]}}
+)");
   const Scene scene = load_scene(file);
-  EXPECT_GT(robot_reach(scene.robot, scene.space), 0.8);  // a 1.7 m humanoid, from its pelvis
-  EXPECT_LE(scene.dropped_obstacle_triangles, scene.obstacle_triangle_count());
+  EXPECT_NEAR(robot_reach(scene.robot, scene.space), std::sqrt(3.0) / 2, 1e-9);
+  // The far box goes whole; of the straddling one (x in [1.5, 2.5]) only the two
+  // triangles of its face at x = 2.5 lie wholly beyond 1.866.
+  EXPECT_EQ(scene.dropped_obstacle_triangles, 12u + 2u);
+  ASSERT_EQ(scene.obstacles.size(), 2u);
+  EXPECT_EQ(scene.obstacles[0].name, "near");
+  EXPECT_EQ(scene.obstacles[0].mesh_W.triangle_count(), 12u);
+  EXPECT_EQ(scene.obstacles[1].name, "straddling");
+  EXPECT_EQ(scene.obstacles[1].mesh_W.triangle_count(), 10u);
 }
 
 }  // namespace

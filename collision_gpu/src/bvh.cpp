@@ -100,12 +100,23 @@ Bvh build_bvh(const double* vertices, int vertex_count, const int* triangles, in
       leaf_triangle.push_back(order[task.begin]);
       continue;
     }
-    // Split at the median centroid along the widest axis: a balanced tree, so that
-    // traversal stacks stay within a fixed, small depth.
+    // Split at the mean centroid along the widest axis (as FCL does), unless that
+    // leaves one side with under a quarter of the triangles: then at the median.
     const Eigen::Vector3d axis = axes.col(0);
-    const int middle = (task.begin + task.end) / 2;
-    std::nth_element(order.begin() + task.begin, order.begin() + middle, order.begin() + task.end,
-                     [&](int a, int b) { return axis.dot(centroids[a]) < axis.dot(centroids[b]); });
+    double mean = 0;
+    for (int i = task.begin; i < task.end; ++i) mean += axis.dot(centroids[order[i]]);
+    mean /= task.end - task.begin;
+    int middle =
+        static_cast<int>(std::partition(order.begin() + task.begin, order.begin() + task.end,
+                                        [&](int t) { return axis.dot(centroids[t]) < mean; }) -
+                         order.begin());
+    const int count = task.end - task.begin;
+    if (4 * (middle - task.begin) < count || 4 * (task.end - middle) < count) {
+      middle = (task.begin + task.end) / 2;
+      std::nth_element(
+          order.begin() + task.begin, order.begin() + middle, order.begin() + task.end,
+          [&](int a, int b) { return axis.dot(centroids[a]) < axis.dot(centroids[b]); });
+    }
     const int left = static_cast<int>(bvh.nodes.size());
     bvh.nodes[task.node].child = left;
     bvh.nodes.emplace_back();

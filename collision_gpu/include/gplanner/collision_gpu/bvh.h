@@ -40,9 +40,10 @@ struct Bvh {
 
 // Builds the BVH of a triangle mesh. vertices: shape [vertex_count, 3]; triangles:
 // shape [triangle_count, 3] (vertex indices). Boxes are fitted to the vertices' principal
-// axes (as FCL's OBB trees are) and split at the median triangle centroid along the
-// widest axis, so the depth is ceil(log2(triangle_count)); computed in double and
-// rounded outward to float.
+// axes and split at the mean triangle centroid along the widest axis (as FCL's OBB trees
+// are), or at the median where the mean leaves under a quarter on one side, so the
+// depth stays within log(triangle_count) / log(4/3); computed in double and rounded
+// outward to float.
 Bvh build_bvh(const double* vertices, int vertex_count, const int* triangles, int triangle_count);
 
 // The node's box as a geometry type.

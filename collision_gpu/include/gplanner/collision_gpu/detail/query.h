@@ -11,7 +11,7 @@
 namespace gplanner::detail {
 
 constexpr int kMaxLinks = 128;
-constexpr int kStackSize = 96;
+constexpr int kStackSize = 128;
 
 using Xf = geometry::Transform<float>;
 using V3f = geometry::Vec3<float>;

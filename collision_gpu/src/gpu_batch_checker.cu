@@ -200,7 +200,7 @@ __device__ void packet_traverse(const CollisionModelView& m, BodyRange a, BodyRa
       continue;
     }
     int a0 = entry.a, a1 = entry.a, b0 = entry.b, b1 = entry.b;
-    if (!na.is_leaf() && (nb.is_leaf() || detail::box_size(na) >= detail::box_size(nb))) {
+    if (detail::splits_a(na, nb)) {
       a0 = na.child;
       a1 = na.child + 1;
     } else {
@@ -600,13 +600,13 @@ struct GpuBatchChecker::Impl {
       // Shares of the memory cap, each also bounded outright (16M jobs, 128M queued
       // tasks: far above what the shipped scenes reach) so that a large free memory is
       // not claimed for nothing. A chunk whose jobs overflow is rerun at half the size.
-      job_capacity = std::min({chunk * bodies,
-                               static_cast<std::size_t>(0.3 * memory_cap) / sizeof(Job),
-                               std::size_t(1) << 24});
-      task_capacity = std::max<std::size_t>(
-          2 * job_capacity + 4 * (kTaskSteps + 1),
-          std::min(static_cast<std::size_t>(0.25 * memory_cap) / sizeof(Task),
-                   std::size_t(1) << 27));
+      job_capacity =
+          std::min({chunk * bodies, static_cast<std::size_t>(0.3 * memory_cap) / sizeof(Job),
+                    std::size_t(1) << 24});
+      task_capacity =
+          std::max<std::size_t>(2 * job_capacity + 4 * (kTaskSteps + 1),
+                                std::min(static_cast<std::size_t>(0.25 * memory_cap) / sizeof(Task),
+                                         std::size_t(1) << 27));
       jobs.reserve(job_capacity);
       tasks.reserve(task_capacity);
       children_capacity = std::min<std::size_t>(task_capacity, std::size_t(kTaskSteps + 1) << 20);

@@ -106,6 +106,12 @@ GP_HD float box_size(const BvhNode& n) {
   return n.extent[0] * n.extent[0] + n.extent[1] * n.extent[1] + n.extent[2] * n.extent[2];
 }
 
+// Which node of an overlapping inner pair to descend into: A's unless it is a leaf or
+// B's box is the larger. Every traversal splits by this rule.
+GP_HD bool splits_a(const BvhNode& na, const BvhNode& nb) {
+  return !na.is_leaf() && (nb.is_leaf() || box_size(na) >= box_size(nb));
+}
+
 struct NodePair {
   int a, b;
 };
@@ -116,7 +122,7 @@ struct NodePair {
 GP_HD void split_pair(const CollisionModelView& m, BodyRange a, BodyRange b, const Xf& X_AB, int ia,
                       int ib, const BvhNode& na, const BvhNode& nb, NodePair* first,
                       NodePair* second) {
-  if (!na.is_leaf() && (nb.is_leaf() || box_size(na) >= box_size(nb))) {
+  if (splits_a(na, nb)) {
     const V3f c = X_AB * V3f{nb.center[0], nb.center[1], nb.center[2]};
     const bool swap = squared_distance(m.nodes[a.node_offset + na.child + 1], c) <
                       squared_distance(m.nodes[a.node_offset + na.child], c);

@@ -54,8 +54,7 @@ struct FclChecker::Impl {
       link_bvhs[l] = build_bvh(robot.links[l].collision);
       links_with_geometry.push_back(static_cast<int>(l));
     }
-    TriangleMesh environment;
-    for (const Obstacle& obstacle : scene.obstacles) environment.append(obstacle.mesh_W);
+    const TriangleMesh environment = scene.environment_mesh();
     if (!environment.empty()) environment_bvh = build_bvh(environment);
     checked_pairs = robot.checked_pairs();
     workspaces.resize(threads);

@@ -149,9 +149,7 @@ CollisionModel build_collision_model(const Scene& scene) {
     model.links.push_back(k);
     model.link_bvhs.push_back(mesh_bvh(link.collision));
   }
-  TriangleMesh environment;
-  for (const Obstacle& obstacle : scene.obstacles) environment.append(obstacle.mesh_W);
-  model.environment = mesh_bvh(environment);
+  model.environment = mesh_bvh(scene.environment_mesh());
   for (const auto& [a, b] : robot.checked_pairs()) {
     model.pair_a.push_back(a);
     model.pair_b.push_back(b);

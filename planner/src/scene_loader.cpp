@@ -486,6 +486,12 @@ std::size_t Scene::obstacle_triangle_count() const {
   return count;
 }
 
+TriangleMesh Scene::environment_mesh() const {
+  TriangleMesh environment;
+  for (const Obstacle& obstacle : obstacles) environment.append(obstacle.mesh_W);
+  return environment;
+}
+
 Eigen::AlignedBox3d Scene::world_bounds() const {
   Eigen::AlignedBox3d box;
   for (const Obstacle& obstacle : obstacles) box.extend(obstacle.mesh_W.bounds());

@@ -37,6 +37,9 @@ struct Scene {
   std::vector<std::string> notices;  // things skipped while loading, worth a line each
 
   std::size_t obstacle_triangle_count() const;
+  // All obstacles as one mesh in the world frame: the static environment every
+  // checker builds its BVH over.
+  TriangleMesh environment_mesh() const;
   // Bounds of everything the scene holds: obstacles and the base bounds.
   Eigen::AlignedBox3d world_bounds() const;
 };

@@ -40,7 +40,6 @@ struct CollisionModel {
   // delta, so that rounding stays inside the band); BV tests use a margin of twice it.
   float threshold = 0;
 
-  bool is_rigid() const { return links.size() == 1 && links[0].parent < 0; }
   std::size_t triangle_count() const;
 };
 

@@ -47,6 +47,6 @@ for entry in "${scenes[@]}"; do
   for run in "gpu --traversal basic" "gpu --traversal packet" "gpu --traversal balanced" "cpu" "fcl"; do
     echo "$(basename "$scene" .yaml): $run" >&2
     # shellcheck disable=SC2086
-    "${gplan[@]}" check "$scene" --n "$n" --seed 1 --backend $run --json | tail -n 1
+    "${gplan[@]}" check "$scene" --n "$n" --seed 1 --backend $run --repeat 5 --json | tail -n 1
   done
 done

@@ -62,8 +62,15 @@ struct Counters {
   unsigned long long triangle_tests;
   unsigned int jobs;  // balanced: jobs emitted
   unsigned int jobs_overflow;
-  unsigned int tasks;   // balanced: children emitted by the last task launch
-  unsigned int leaves;  // balanced: leaf pairs emitted by the last task launch
+  // The balanced task queue, kept on the device so that rounds follow one another
+  // without the host: tasks [0, top) are queued; a round takes [begin, begin + launch).
+  unsigned int top, begin, launch;
+  unsigned int tasks;    // children emitted by this round's task kernel
+  unsigned int leaves;   // leaf pairs emitted by this round's task kernel
+  unsigned int fetched;  // tasks taken by the lanes of this round's task kernel
+  unsigned int rounds;   // rounds that had tasks
+  unsigned int steps;    // BV tests a task of this round runs at most
+  unsigned int queue_full;
 };
 
 constexpr unsigned kFullMask = 0xffffffffu;
@@ -324,85 +331,144 @@ __global__ void balanced_roots_kernel(CollisionModelView m, const float* d_q, in
 // many threads in the next launch, long enough that a query finding a collision stops
 // its own search early.
 constexpr int kTaskSteps = 32;
+// Once a round has fewer tasks than kTailTasks the GPU has room to spare, and tasks run
+// kTailSteps: the remaining hard queries spread over more threads sooner.
+constexpr unsigned kTailTasks = 65536;
+constexpr unsigned kTailSteps = 8;
 
-// One task per thread: up to kTaskSteps BV-pair tests depth-first from the task's node
-// pair. Overlapping leaf pairs go to the leaf queue, tested by balanced_leaf_kernel
-// (the double-precision triangle test would otherwise stall the whole warp and, with
-// its registers, cut the threads that fit); the node pairs left on the stack become
-// new tasks in d_children (one atomic per warp).
+// Tasks fetched lane by lane: each lane runs up to kTaskSteps BV-pair tests depth-first
+// from its task's node pair and, as soon as its task ends (stack empty, steps used up, or
+// the query found colliding), takes the next task of the launch, so that the lanes of a
+// warp stay busy although their tasks end at very different steps. Overlapping leaf
+// pairs go to the leaf queue, tested by balanced_leaf_kernel (the double-precision
+// triangle test would otherwise stall the whole warp and, with its registers, cut the
+// threads that fit); the node pairs left on a stack become new tasks in d_children (one
+// atomic per warp and step at which some lane hands its stack back).
 __global__ void __launch_bounds__(256, 4)
-    balanced_task_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_tasks, int count,
+    balanced_task_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_queue,
                          Task* d_children, Task* d_leaves, unsigned leaf_capacity,
                          const std::uint8_t* d_collided, Counters* d_counters) {
-  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  const unsigned count = d_counters->launch;
+  if (count == 0) return;  // the queue ran empty in an earlier round of this burst
+  const Task* d_tasks = d_queue + d_counters->begin;
+  const unsigned lane = threadIdx.x & 31;
   detail::TraversalCounts counts;
   // Each step pops one pair and pushes at most two: kTaskSteps + 1 entries suffice.
   int stack_a[kTaskSteps + 1], stack_b[kTaskSteps + 1];
-  int top = 0;
-  int job_index = 0;
-  if (t < count) {
-    const Task task = d_tasks[t];
-    job_index = task.job;
-    const Job& job = d_jobs[task.job];
-    if (!d_collided[job.query]) {
-      const detail::Xf X_AB = detail::load_transform(job.X_AB);
-      stack_a[0] = task.a;
-      stack_b[0] = task.b;
-      top = 1;
-      for (int step = 0; top > 0 && step < kTaskSteps; ++step) {
-        if ((step & 7) == 7 && d_collided[job.query]) {
-          top = 0;  // a leaf test of this query found a collision
-          break;
+  int top = 0, job_index = 0, query = 0;
+  unsigned steps = 0;
+  BodyRange body_a{}, body_b{};
+  detail::Xf X_AB{}, X_BA{};
+  const unsigned max_steps = d_counters->steps;
+  const unsigned threads = gridDim.x * blockDim.x;
+  bool exhausted = false, first = true;
+  while (__any_sync(kFullMask, top > 0 || !exhausted)) {
+    // Lanes without a task take the next ones: the first by thread index, the later ones
+    // beyond all threads' first through one atomic per warp.
+    const bool fetch = top == 0 && !exhausted;
+    const unsigned fetching = __ballot_sync(kFullMask, fetch);
+    if (fetching) {
+      unsigned base = 0;
+      if (!first) {
+        const int leader = __ffs(fetching) - 1;
+        if (lane == static_cast<unsigned>(leader))
+          base = atomicAdd(&d_counters->fetched, static_cast<unsigned>(__popc(fetching)));
+        base = __shfl_sync(kFullMask, base, leader);
+      }
+      if (fetch) {
+        const unsigned index = first ? blockIdx.x * blockDim.x + threadIdx.x
+                                     : threads + base + __popc(fetching & ((1u << lane) - 1u));
+        if (index >= count) {
+          exhausted = true;
+        } else {
+          const Task task = d_tasks[index];
+          const Job& job = d_jobs[task.job];
+          job_index = task.job;
+          query = job.query;
+          if (!d_collided[query]) {
+            body_a = job.a;
+            body_b = job.b;
+            X_AB = detail::load_transform(job.X_AB);
+            X_BA = geometry::inverse(X_AB);
+            stack_a[0] = task.a;
+            stack_b[0] = task.b;
+            top = 1;
+            steps = 0;
+          }
         }
+      }
+      first = false;
+    }
+    bool hand_back = false;
+    if (top > 0) {
+      if ((steps & 7) == 7 && d_collided[query]) {
+        top = 0;  // a leaf test of this query found a collision
+      } else {
+        ++steps;
         --top;
         const int ia = stack_a[top], ib = stack_b[top];
-        const BvhNode& na = m.nodes[job.a.node_offset + ia];
-        const BvhNode& nb = m.nodes[job.b.node_offset + ib];
+        const BvhNode& na = m.nodes[body_a.node_offset + ia];
+        const BvhNode& nb = m.nodes[body_b.node_offset + ib];
         ++counts.bv_tests;
-        if (!detail::nodes_overlap(na, nb, X_AB, m.margin)) continue;
-        if (na.is_leaf() && nb.is_leaf()) {
-          const unsigned slot = atomicAdd(&d_counters->leaves, 1u);
-          if (slot < leaf_capacity) {
-            d_leaves[slot] = {task.job, na.triangle(), nb.triangle()};
+        if (detail::nodes_overlap(na, nb, X_AB, m.margin)) {
+          if (na.is_leaf() && nb.is_leaf()) {
+            const unsigned slot = atomicAdd(&d_counters->leaves, 1u);
+            if (slot < leaf_capacity) {
+              d_leaves[slot] = {job_index, na.triangle(), nb.triangle()};
+            } else {
+              ++top;  // the leaf queue is full: keep the pair as a task for the next launch
+              hand_back = true;
+            }
           } else {
-            ++top;  // the leaf queue is full: keep the pair as a task for the next launch
-            break;
+            detail::NodePair first, second;
+            detail::split_pair(m, body_a, body_b, X_AB, X_BA, ia, ib, na, nb, &first, &second);
+            stack_a[top] = second.a;
+            stack_b[top] = second.b;
+            ++top;
+            stack_a[top] = first.a;
+            stack_b[top] = first.b;
+            ++top;
           }
-          continue;
         }
-        detail::NodePair first, second;
-        detail::split_pair(m, job.a, job.b, X_AB, ia, ib, na, nb, &first, &second);
-        stack_a[top] = second.a;
-        stack_b[top] = second.b;
-        ++top;
-        stack_a[top] = first.a;
-        stack_b[top] = first.b;
-        ++top;
+        if (top > 0 && steps == max_steps) hand_back = true;
       }
     }
+    // Warp-aggregated append of the stacks handed back.
+    const int leaving = hand_back ? top : 0;
+    if (__any_sync(kFullMask, leaving > 0)) {
+      int offset = leaving;
+      for (int d = 1; d < 32; d *= 2) {
+        const int other = __shfl_up_sync(kFullMask, offset, d);
+        if (lane >= static_cast<unsigned>(d)) offset += other;
+      }
+      const int total = __shfl_sync(kFullMask, offset, 31);
+      unsigned base = 0;
+      if (lane == 31) base = atomicAdd(&d_counters->tasks, static_cast<unsigned>(total));
+      base = __shfl_sync(kFullMask, base, 31);
+      const unsigned at = base + offset - leaving;
+      for (int k = 0; k < leaving; ++k) d_children[at + k] = {job_index, stack_a[k], stack_b[k]};
+    }
+    if (hand_back) top = 0;
   }
-  // Warp-aggregated append of what is left.
-  const unsigned lane = threadIdx.x & 31;
-  int offset = top;
-  for (int d = 1; d < 32; d *= 2) {
-    const int other = __shfl_up_sync(kFullMask, offset, d);
-    if (lane >= static_cast<unsigned>(d)) offset += other;
-  }
-  const int total = __shfl_sync(kFullMask, offset, 31);
-  unsigned base = 0;
-  if (lane == 31 && total > 0) base = atomicAdd(&d_counters->tasks, static_cast<unsigned>(total));
-  base = __shfl_sync(kFullMask, base, 31);
-  const unsigned at = base + offset - top;
-  for (int k = 0; k < top; ++k) d_children[at + k] = {job_index, stack_a[k], stack_b[k]};
   add_counts(counts, d_counters);
 }
 
-// One leaf pair per thread: the triangle test, marking the query when it collides.
-__global__ void balanced_leaf_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_leaves,
-                                     int count, std::uint8_t* d_collided, Counters* d_counters) {
-  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+// The leaf pairs of a round, a thread each (grid-stride): the triangle test, marking the
+// query when it collides. The same kernel moves the round's children into the queue
+// where its tasks were taken from.
+__global__ void __launch_bounds__(256, 2)
+    balanced_leaf_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_leaves,
+                         unsigned leaf_capacity, const Task* d_children, Task* d_queue,
+                         std::uint8_t* d_collided, Counters* d_counters) {
+  const unsigned leaves = min(d_counters->leaves, leaf_capacity);
+  const unsigned children = d_counters->tasks;
+  Task* d_to = d_queue + d_counters->begin;
+  const unsigned stride = gridDim.x * blockDim.x;
+  for (unsigned t = blockIdx.x * blockDim.x + threadIdx.x; t < children; t += stride)
+    d_to[t] = d_children[t];
+  if (leaves == 0) return;
   detail::TraversalCounts counts;
-  if (t < count) {
+  for (unsigned t = blockIdx.x * blockDim.x + threadIdx.x; t < leaves; t += stride) {
     const Task leaf = d_leaves[t];
     const Job& job = d_jobs[leaf.job];
     if (!d_collided[job.query]) {
@@ -417,6 +483,27 @@ __global__ void balanced_leaf_kernel(CollisionModelView m, const Job* d_jobs, co
   add_counts(counts, d_counters);
 }
 
+// Ends a round: the children join the queue, and the next round takes the newest tasks
+// (depth-first across rounds, which keeps the queue short), as many as leave room for
+// their children.
+__global__ void balanced_advance_kernel(Counters* d_counters, unsigned task_capacity,
+                                        unsigned max_launch) {
+  Counters& c = *d_counters;
+  const unsigned top = c.begin + c.tasks;
+  // A task leaves at most kTaskSteps + 1 pairs in place of itself.
+  const unsigned room = (task_capacity - top) / kTaskSteps;
+  const unsigned launch = min(top, min(room, max_launch));
+  if (top > 0 && launch == 0) c.queue_full = 1;
+  c.top = top;
+  c.launch = launch;
+  c.begin = top - launch;
+  c.tasks = 0;
+  c.leaves = 0;
+  c.fetched = 0;
+  c.steps = launch < kTailTasks ? kTailSteps : kTaskSteps;
+  if (launch > 0) ++c.rounds;
+}
+
 int blocks_for(std::size_t n, int threads) { return static_cast<int>((n + threads - 1) / threads); }
 
 }  // namespace
@@ -427,6 +514,8 @@ struct GpuBatchChecker::Impl {
   CollisionModelView view{};
   std::string device_name;
   std::size_t memory_cap = 0;
+  int resident_task_blocks = 1;  // balanced: blocks of each kernel resident at once
+  int resident_leaf_blocks = 1;
   GpuCheckStats stats;
 
   DeviceBuffer<LinkKinematics> links;
@@ -455,6 +544,15 @@ struct GpuBatchChecker::Impl {
     cudaDeviceProp properties{};
     check_cuda(cudaGetDeviceProperties(&properties, 0), "cudaGetDeviceProperties");
     device_name = properties.name;
+    int blocks_per_sm = 0;
+    check_cuda(
+        cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm, balanced_task_kernel, 256, 0),
+        "occupancy");
+    resident_task_blocks = std::max(1, blocks_per_sm) * properties.multiProcessorCount;
+    check_cuda(
+        cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm, balanced_leaf_kernel, 256, 0),
+        "occupancy");
+    resident_leaf_blocks = std::max(1, blocks_per_sm) * properties.multiProcessorCount;
     std::size_t free_bytes = 0, total_bytes = 0;
     check_cuda(cudaMemGetInfo(&free_bytes, &total_bytes), "cudaMemGetInfo");
     memory_cap = options.memory_cap_bytes ? options.memory_cap_bytes : free_bytes / 2;
@@ -546,44 +644,37 @@ struct GpuBatchChecker::Impl {
     check_cuda(cudaGetLastError(), "balanced roots kernel");
     Counters c = read_counters();
     if (c.jobs_overflow) return false;
-    std::size_t top = c.jobs;
+    // The jobs' root tasks fill the queue: as if a round at 0 had emitted them.
+    c.begin = 0;
+    c.tasks = c.jobs;
+    c.rounds = 0;
+    c.queue_full = 0;
+    check_cuda(cudaMemcpy(counters.get(), &c, sizeof(c), cudaMemcpyHostToDevice), "counters");
     // Each task may leave up to kTaskSteps + 1 node pairs behind.
-    const std::size_t max_launch =
-        std::min<std::size_t>(1u << 20, children_capacity / (kTaskSteps + 1));
-    while (top > 0) {
-      // After the launch, top - launch + (up to kTaskSteps + 1 per task) must still fit.
-      const std::size_t room = (task_capacity - top) / kTaskSteps;
-      const std::size_t launch = std::min({top, room, max_launch});
-      if (launch == 0)
+    const unsigned max_launch = static_cast<unsigned>(
+        std::min<std::size_t>(1u << 20, children_capacity / (kTaskSteps + 1)));
+    const unsigned capacity = static_cast<unsigned>(std::min<std::size_t>(task_capacity, ~0u));
+    balanced_advance_kernel<<<1, 1>>>(counters.get(), capacity, max_launch);
+    // Rounds run in bursts without the host; the queue is read between bursts, and a
+    // round after the queue ran empty costs three near-empty launches.
+    int burst = 4;
+    while (true) {
+      for (int r = 0; r < burst; ++r) {
+        balanced_task_kernel<<<resident_task_blocks, 256>>>(
+            view, jobs.get(), tasks.get(), children.get(), leaves.get(),
+            static_cast<unsigned>(leaf_capacity), verdicts.get(), counters.get());
+        balanced_leaf_kernel<<<resident_leaf_blocks, 256>>>(
+            view, jobs.get(), leaves.get(), static_cast<unsigned>(leaf_capacity), children.get(),
+            tasks.get(), verdicts.get(), counters.get());
+        balanced_advance_kernel<<<1, 1>>>(counters.get(), capacity, max_launch);
+      }
+      check_cuda(cudaGetLastError(), "balanced traversal kernels");
+      c = read_counters();
+      if (c.queue_full)
         throw std::runtime_error("balanced traversal: task queue full; lower the batch size");
-      check_cuda(cudaMemset(&counters.get()->tasks, 0, 2 * sizeof(unsigned)),
-                 "memset");  // tasks, leaves
-      const std::size_t begin = top - launch;
-      balanced_task_kernel<<<blocks_for(launch, 256), 256>>>(
-          view, jobs.get(), tasks.get() + begin, static_cast<int>(launch), children.get(),
-          leaves.get(), static_cast<unsigned>(leaf_capacity), verdicts.get(), counters.get());
-      check_cuda(cudaGetLastError(), "balanced task kernel");
-      ++stats.rounds;
-      unsigned emitted[2] = {0, 0};  // tasks, leaves
-      check_cuda(
-          cudaMemcpy(emitted, &counters.get()->tasks, sizeof(emitted), cudaMemcpyDeviceToHost),
-          "read");
-      const unsigned spawned = emitted[0];
-      const unsigned leaf_count =
-          std::min<unsigned>(emitted[1], static_cast<unsigned>(leaf_capacity));
-      if (leaf_count) {
-        balanced_leaf_kernel<<<blocks_for(leaf_count, 256), 256>>>(view, jobs.get(), leaves.get(),
-                                                                   static_cast<int>(leaf_count),
-                                                                   verdicts.get(), counters.get());
-        check_cuda(cudaGetLastError(), "balanced leaf kernel");
-      }
-      if (spawned) {
-        check_cuda(cudaMemcpyAsync(tasks.get() + begin, children.get(), spawned * sizeof(Task),
-                                   cudaMemcpyDeviceToDevice),
-                   "move tasks");
-      }
-      top = begin + spawned;
+      if (c.top == 0) break;
     }
+    stats.rounds += c.rounds;
     return true;
   }
 

@@ -243,6 +243,20 @@ TEST_F(GplanCheck, BadCountIsAUsageError) {
   }
 }
 
+TEST_F(GplanCheck, RepeatReportsTheMedianAndTheSameVerdicts) {
+  const CommandResult once = check("--n 200 --backend cpu --json");
+  const CommandResult thrice = check("--n 200 --backend cpu --repeat 3 --json");
+  ASSERT_EQ(once.exit_code, 0) << once.output;
+  ASSERT_EQ(thrice.exit_code, 0) << thrice.output;
+  EXPECT_EQ(json_integer(last_line(thrice.output), "repeat"), 3) << thrice.output;
+  EXPECT_EQ(json_integer(last_line(thrice.output), "collisions"),
+            json_integer(last_line(once.output), "collisions"));
+  EXPECT_NE(thrice.output.find("median of 3 runs"), std::string::npos) << thrice.output;
+  const CommandResult none = check("--n 10 --repeat 0");
+  EXPECT_EQ(none.exit_code, 2) << none.output;
+  EXPECT_NE(none.output.find("--repeat"), std::string::npos) << none.output;
+}
+
 TEST_F(GplanCheck, MissingOrExtraSceneIsAUsageError) {
   for (const std::string& arguments :
        {std::string("check"), "check " + shell_quoted(scene_) + " x"}) {

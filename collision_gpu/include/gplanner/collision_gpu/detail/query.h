@@ -118,10 +118,11 @@ struct NodePair {
 
 // The two child pairs of an overlapping inner node pair (ia, ib): the larger box is
 // split, and the child whose centre lies nearer the other box's centre comes first,
-// being the likelier to hold a collision, so that a query stops sooner.
-GP_HD void split_pair(const CollisionModelView& m, BodyRange a, BodyRange b, const Xf& X_AB, int ia,
-                      int ib, const BvhNode& na, const BvhNode& nb, NodePair* first,
-                      NodePair* second) {
+// being the likelier to hold a collision, so that a query stops sooner. X_BA is the
+// inverse of X_AB, computed once per body pair by the caller.
+GP_HD void split_pair(const CollisionModelView& m, BodyRange a, BodyRange b, const Xf& X_AB,
+                      const Xf& X_BA, int ia, int ib, const BvhNode& na, const BvhNode& nb,
+                      NodePair* first, NodePair* second) {
   if (splits_a(na, nb)) {
     const V3f c = X_AB * V3f{nb.center[0], nb.center[1], nb.center[2]};
     const bool swap = squared_distance(m.nodes[a.node_offset + na.child + 1], c) <
@@ -129,7 +130,7 @@ GP_HD void split_pair(const CollisionModelView& m, BodyRange a, BodyRange b, con
     *first = {na.child + (swap ? 1 : 0), ib};
     *second = {na.child + (swap ? 0 : 1), ib};
   } else {
-    const V3f c = geometry::inverse(X_AB) * V3f{na.center[0], na.center[1], na.center[2]};
+    const V3f c = X_BA * V3f{na.center[0], na.center[1], na.center[2]};
     const bool swap = squared_distance(m.nodes[b.node_offset + nb.child + 1], c) <
                       squared_distance(m.nodes[b.node_offset + nb.child], c);
     *first = {ia, nb.child + (swap ? 1 : 0)};
@@ -141,6 +142,7 @@ GP_HD void split_pair(const CollisionModelView& m, BodyRange a, BodyRange b, con
 // a depth-first walk of their BVTT with a private stack, in split_pair's order.
 GP_HD bool bodies_collide(const CollisionModelView& m, BodyRange a, BodyRange b, const Xf& X_AB,
                           TraversalCounts* counts) {
+  const Xf X_BA = geometry::inverse(X_AB);
   int stack_a[kStackSize], stack_b[kStackSize];
   int top = 0;
   stack_a[0] = 0;
@@ -162,7 +164,7 @@ GP_HD bool bodies_collide(const CollisionModelView& m, BodyRange a, BodyRange b,
       continue;
     }
     NodePair first, second;
-    split_pair(m, a, b, X_AB, ia, ib, na, nb, &first, &second);
+    split_pair(m, a, b, X_AB, X_BA, ia, ib, na, nb, &first, &second);
     stack_a[top] = second.a;
     stack_b[top] = second.b;
     ++top;

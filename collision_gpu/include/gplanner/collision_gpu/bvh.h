@@ -10,8 +10,8 @@
 
 namespace gplanner {
 
-// 64 bytes. Inner nodes have children at `child` and `child + 1`; a leaf holds one
-// triangle, encoded as child = -(triangle + 1).
+// 80 bytes (68 used, padded to 16-byte alignment). Inner nodes have children at `child`
+// and `child + 1`; a leaf holds one triangle, encoded as child = -(triangle + 1).
 struct alignas(16) BvhNode {
   float center[3];
   std::int32_t child;

@@ -1,6 +1,7 @@
 #include "command_line.h"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 
 namespace gplan {
@@ -49,6 +50,18 @@ long long CommandLine::count(const std::string& name, long long fallback) const 
   const long long value = std::strtoll(it->second.c_str(), &end, 10);
   if (it->second.empty() || *end != '\0' || errno != 0 || value < 0) {
     throw UsageError("--" + name + " expects a non-negative integer, not '" + it->second + "'");
+  }
+  return value;
+}
+
+double CommandLine::positive_number(const std::string& name, double fallback) const {
+  const auto it = values_.find(name);
+  if (it == values_.end()) return fallback;
+  errno = 0;
+  char* end = nullptr;
+  const double value = std::strtod(it->second.c_str(), &end);
+  if (it->second.empty() || *end != '\0' || errno != 0 || !(value > 0) || !std::isfinite(value)) {
+    throw UsageError("--" + name + " expects a positive number, not '" + it->second + "'");
   }
   return value;
 }

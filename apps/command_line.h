@@ -27,6 +27,8 @@ class CommandLine {
   std::string text(const std::string& name, const std::string& fallback) const;
   // Non-negative integers, rejected with a UsageError naming the option otherwise.
   long long count(const std::string& name, long long fallback) const;
+  // Positive finite numbers, rejected with a UsageError naming the option otherwise.
+  double positive_number(const std::string& name, double fallback) const;
 
  private:
   std::vector<std::string> positionals_;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "check_command.h"
+#include "plan_command.h"
 #include "command_line.h"
 #include "gplanner/collision_gpu/gpu_device.h"
 #include "gplanner/planner/input_error.h"
@@ -23,6 +24,13 @@ const char* kUsage =
     "      (exit 3 when it is broken); --repeat checks the batch R times and reports the\n"
     "      median time; --out writes each configuration's values and its\n"
     "      verdict (1 collision, 0 free), one per line; --json ends with a JSON summary\n"
+    "  gplan plan SCENE [--planner lazyprm|prm] [--backend gpu|cpu|fcl] [--seed S]\n"
+    "                   [--time-limit SECONDS] [--milestones N] [--traversal T] [--threads T]\n"
+    "                   [--load-roadmap FILE] [--save-roadmap FILE] [--out FILE] [--json]\n"
+    "      plan from the scene's start to its goal (default lazyprm on the gpu backend;\n"
+    "      seed, time limit and first-round milestones default to the scene's planner\n"
+    "      settings) and print the time per stage; --out writes the path (YAML); exit 4\n"
+    "      when no path is found within the time limit\n"
     "  gplan info\n"
     "      how gplanner was built and which GPU it can use\n";
 
@@ -50,6 +58,7 @@ int main(int argc, char** argv) {
   const std::string command = argv[1];
   try {
     if (command == "check") return gplan::run_check(argc, argv);
+    if (command == "plan") return gplan::run_plan(argc, argv);
     if (command == "info") return run_info();
     throw gplan::UsageError("unknown command '" + command + "'");
   } catch (const gplan::UsageError& e) {

@@ -541,6 +541,38 @@ Scene load_scene(const std::string& path) {
       in.fail(root["planner"]["delta_fraction"], "planner.delta_fraction",
               "must lie in (0, 1e-5]: the tolerance band may not exceed 1e-5 of the scene's size");
     }
+    // The other numbers: each within its range (counts whole).
+    struct Range {
+      const char* key;
+      double low, high;
+      bool low_open, whole;
+      const char* what;
+    };
+    const Range ranges[] = {
+        {"time_limit_s", 0, 1e9, true, false, "must be a positive number of seconds"},
+        {"distance_weights.position", 0, 1e9, false, false, "must be 0 or more"},
+        {"distance_weights.rotation", 0, 1e9, false, false, "must be 0 or more"},
+        {"distance_weights.joint", 0, 1e9, false, false, "must be 0 or more"},
+        {"edge_resolution", 0, 1, true, false, "must lie in (0, 1]"},
+        {"max_displacement", 0, 1e9, false, false, "must be 0 (off) or a distance in metres"},
+        {"roadmap.milestones", 1, 1e8, false, true, "must be a whole number from 1 to 1e8"},
+        {"roadmap.neighbors", 1, 64, false, true, "must be a whole number from 1 to 64"},
+        {"shortcut.rounds", 0, 1000, false, true, "must be a whole number from 0 to 1000"},
+        {"shortcut.candidates", 1, 1e6, false, true, "must be a whole number from 1 to 1e6"},
+    };
+    for (const Range& r : ranges) {
+      const double v = scene.planner.number(r.key);
+      const bool ok = (r.low_open ? v > r.low : v >= r.low) && v <= r.high &&
+                      (!r.whole || v == std::floor(v));
+      if (!ok) {
+        const std::string key = r.key;
+        const std::size_t dot = key.find('.');
+        const YAML::Node node = dot == std::string::npos
+                                    ? root["planner"][key]
+                                    : root["planner"][key.substr(0, dot)][key.substr(dot + 1)];
+        in.fail(node, "planner." + key, r.what);
+      }
+    }
   } catch (const YAML::Exception& e) {
     // A value of the wrong shape where yaml-cpp itself converts (a map key, say).
     throw InputError({path, e.mark.line + 1, "yaml"}, e.msg + "; use plain text keys and values");

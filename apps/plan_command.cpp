@@ -1,0 +1,181 @@
+#include "plan_command.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "command_line.h"
+#include "gplanner/planner/checker_factory.h"
+#include "gplanner/planner/neighbor_finder.h"
+#include "gplanner/planner/path_file.h"
+#include "gplanner/planner/roadmap_planner.h"
+#include "gplanner/planner/scene.h"
+#include "gplanner/planner/scene_metric.h"
+
+namespace gplan {
+namespace {
+
+std::string json_text(const std::string& text) {
+  std::ostringstream out;
+  out << '"';
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out << '\\' << c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << static_cast<int>(c)
+          << std::dec;
+    } else {
+      out << c;
+    }
+  }
+  out << '"';
+  return out.str();
+}
+
+// Refuses a file that cannot be written before the work, not after.
+void require_writable_file(const std::string& option, const std::string& file) {
+  if (file.empty()) return;
+  const std::filesystem::path folder = std::filesystem::path(file).parent_path();
+  if (std::filesystem::is_directory(file) ||
+      !std::filesystem::is_directory(folder.empty() ? "." : folder)) {
+    throw UsageError("--" + option + " " + file + ": not a file in an existing folder");
+  }
+}
+
+}  // namespace
+
+int run_plan(int argc, char** argv) {
+  const CommandLine args(argc, argv, 2,
+                         {"planner", "backend", "seed", "time-limit", "milestones", "traversal",
+                          "threads", "load-roadmap", "save-roadmap", "out"},
+                         {"json"});
+  if (args.positionals().size() != 1) throw UsageError("gplan plan takes one scene file");
+  const std::string scene_file = args.positionals()[0];
+  gplanner::RoadmapStrategy strategy = gplanner::RoadmapStrategy::kLazyPrm;
+  if (!gplanner::parse_strategy(args.text("planner", "lazyprm"), &strategy))
+    throw UsageError("--planner: '" + args.text("planner", "") + "' is not one of lazyprm, prm");
+  const std::string backend = args.text("backend", "gpu");
+  gplanner::CheckerOptions checker_options;
+  checker_options.threads = static_cast<int>(args.count("threads", 0));
+  if (args.has("traversal") &&
+      !gplanner::parse_traversal(args.text("traversal", ""), &checker_options.gpu.traversal)) {
+    throw UsageError("--traversal: '" + args.text("traversal", "") +
+                     "' is not one of basic, packet, balanced");
+  }
+  const std::string out = args.text("out", "");
+  const std::string save = args.text("save-roadmap", "");
+  const std::string load = args.text("load-roadmap", "");
+  require_writable_file("out", out);
+  require_writable_file("save-roadmap", save);
+  if (!load.empty() && !std::filesystem::is_regular_file(load))
+    throw UsageError("--load-roadmap " + load + ": no such file");
+
+  const gplanner::Scene scene = gplanner::load_scene(scene_file);
+  for (const std::string& notice : scene.notices) std::cerr << "notice: " << notice << "\n";
+  gplanner::PlanOptions options = gplanner::plan_options(scene);
+  options.seed = static_cast<unsigned long long>(args.count("seed", options.seed));
+  options.time_limit_s = args.positive_number("time-limit", options.time_limit_s);
+  if (args.has("milestones")) {
+    options.milestones = static_cast<std::size_t>(args.count("milestones", 0));
+    if (options.milestones == 0) throw UsageError("--milestones: give 1 or more");
+  }
+
+  std::unique_ptr<gplanner::CollisionChecker> checker;
+  try {
+    std::string notice;
+    checker = gplanner::make_collision_checker(scene, backend, checker_options, &notice);
+    if (!notice.empty()) std::cerr << "notice: " << notice << "\n";
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--backend: ") + e.what());
+  }
+  gplanner::check_start_and_goal(scene, checker.get());
+  const gplanner::ConfigurationMetric metric = gplanner::make_metric(scene.space, scene.planner);
+  std::string knn_notice;
+  std::unique_ptr<gplanner::NeighborFinder> neighbors =
+      gplanner::make_neighbor_finder(metric, checker->backend(), &knn_notice);
+  if (!knn_notice.empty()) std::cerr << "notice: " << knn_notice << "\n";
+
+  // Progress: a line updated in place on a terminal, a line per round otherwise once
+  // planning has taken a second.
+  const bool terminal = isatty(STDERR_FILENO);
+  options.progress = [&](const gplanner::PlanProgress& p) {
+    if (!terminal && (p.elapsed_s < 1.0 || std::string(p.stage) != "neighbours")) return;
+    std::ostringstream line;
+    line << "round " << p.round << ": " << p.stage << ", " << p.milestones << " milestones, "
+         << p.edges << " edges (" << p.edges_valid << " known valid), " << std::fixed
+         << std::setprecision(1) << p.elapsed_s << " s";
+    if (terminal) {
+      std::cerr << "\r" << std::left << std::setw(90) << line.str() << std::flush;
+    } else {
+      std::cerr << line.str() << "\n";
+    }
+  };
+
+  gplanner::RoadmapPlanner planner(scene, checker.get(), neighbors.get(), strategy, options);
+  if (!load.empty()) planner.set_roadmap(gplanner::load_roadmap(scene, load));
+  const gplanner::PlanResult result = planner.solve(scene.start.data(), scene.goal.data());
+  if (terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
+  if (!save.empty()) gplanner::save_roadmap(planner.roadmap(), scene, save);
+  if (result.solved && !out.empty()) {
+    gplanner::write_path_file(out, scene, result, gplanner::strategy_name(strategy),
+                              checker->backend());
+  }
+
+  const gplanner::PlanTimes& t = result.times;
+  const int width = scene.space.width();
+  const std::size_t waypoints = result.path.size() / width;
+  std::cout << std::fixed << "scene       " << scene_file << " (" << scene.name << "), "
+            << scene.space.dof() << " DOF\n"
+            << "planner     " << gplanner::strategy_name(strategy) << ", seed " << options.seed
+            << ", " << checker->backend() << " backend, k-NN on the " << neighbors->device()
+            << "\n"
+            << "roadmap     " << result.milestones << " milestones, " << result.edges
+            << " edges (" << result.edges_checked << " checked, " << result.samples_checked
+            << " edge samples), " << result.states_checked << " states checked, "
+            << result.rounds << " round(s)\n";
+  if (result.solved) {
+    std::cout << "path        " << waypoints << " waypoints, length " << std::setprecision(3)
+              << result.length << " (" << result.length_before_shortcut
+              << " before shortcutting)\n";
+  } else {
+    std::cout << "path        none found (" << result.stop_reason << ")\n";
+  }
+  std::cout << std::setprecision(4) << "time        " << t.total << " s: sampling " << t.sampling
+            << ", state checks " << t.state_checks << ", k-NN " << t.knn << ", search "
+            << t.search << ", edge checks " << t.edge_checks << ", shortcutting "
+            << t.shortcutting << "\n";
+  if (result.solved && !out.empty()) std::cout << "wrote       " << out << "\n";
+  if (!save.empty()) std::cout << "wrote       " << save << " (roadmap)\n";
+  if (args.flag("json")) {
+    std::cout << std::setprecision(6) << "{\"scene\":" << json_text(scene_file)
+              << ",\"name\":" << json_text(scene.name)
+              << ",\"planner\":" << json_text(gplanner::strategy_name(strategy))
+              << ",\"backend\":" << json_text(checker->backend())
+              << ",\"knn\":" << json_text(neighbors->device()) << ",\"seed\":" << options.seed
+              << ",\"solved\":" << (result.solved ? "true" : "false")
+              << ",\"stop_reason\":" << json_text(result.stop_reason)
+              << ",\"length\":" << result.length
+              << ",\"length_before_shortcut\":" << result.length_before_shortcut
+              << ",\"waypoints\":" << waypoints << ",\"milestones\":" << result.milestones
+              << ",\"edges\":" << result.edges << ",\"edges_checked\":" << result.edges_checked
+              << ",\"states_checked\":" << result.states_checked
+              << ",\"samples_checked\":" << result.samples_checked
+              << ",\"rounds\":" << result.rounds << ",\"seconds\":" << t.total
+              << ",\"times\":{\"sampling\":" << t.sampling << ",\"state_checks\":"
+              << t.state_checks << ",\"knn\":" << t.knn << ",\"search\":" << t.search
+              << ",\"edge_checks\":" << t.edge_checks << ",\"shortcutting\":" << t.shortcutting
+              << "}}\n";
+  }
+  if (!result.solved) {
+    std::cerr << "gplan: no path found within " << options.time_limit_s << " s ("
+              << result.milestones << " milestones); raise --time-limit or the scene's "
+              << "planner.roadmap.milestones\n";
+    return 4;
+  }
+  return 0;
+}
+
+}  // namespace gplan

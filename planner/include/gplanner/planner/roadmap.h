@@ -1,0 +1,66 @@
+#pragma once
+// A probabilistic roadmap: collision-free milestones and the straight-line edges between
+// near ones, each edge unknown (lazy), valid or invalid. Saved to and loaded from a
+// binary file that names the scene it was built for (a fingerprint of everything an
+// edge's validity depends on) and carries a checksum.
+
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace gplanner {
+
+struct Scene;
+
+enum class EdgeState : std::uint8_t { kUnknown = 0, kValid = 1, kInvalid = 2 };
+
+struct RoadmapEdge {
+  std::uint32_t a = 0, b = 0;  // vertex indices, a < b
+  float length = 0;            // metric distance
+  EdgeState state = EdgeState::kUnknown;
+};
+
+class Roadmap {
+ public:
+  explicit Roadmap(int width = 0) : width_(width) {}
+
+  int width() const { return width_; }
+  std::size_t vertex_count() const { return adjacency_.size(); }
+  std::size_t edge_count() const { return edges_.size(); }
+  const float* vertex(std::size_t i) const { return &vertices_[i * width_]; }
+  const std::vector<float>& vertices() const { return vertices_; }  // shape [n, width]
+  const std::vector<RoadmapEdge>& edges() const { return edges_; }
+  RoadmapEdge& edge(std::size_t e) { return edges_[e]; }
+  const RoadmapEdge& edge(std::size_t e) const { return edges_[e]; }
+  // Edge indices at vertex v.
+  const std::vector<std::uint32_t>& edges_at(std::size_t v) const { return adjacency_[v]; }
+
+  std::uint32_t add_vertex(const float* q);
+  // Adds the edge a-b unless it exists (or a == b); returns its index, or -1 when it was
+  // not added.
+  long long add_edge(std::uint32_t a, std::uint32_t b, float length,
+                     EdgeState state = EdgeState::kUnknown);
+  long long find_edge(std::uint32_t a, std::uint32_t b) const;
+
+ private:
+  int width_;
+  std::vector<float> vertices_;
+  std::vector<RoadmapEdge> edges_;
+  std::vector<std::vector<std::uint32_t>> adjacency_;
+  std::unordered_map<std::uint64_t, std::uint32_t> edge_index_;
+};
+
+// 64-bit fingerprint of what decides a roadmap's validity in `scene`: the robot's
+// geometry and kinematics, the obstacles, the configuration space, the metric weights,
+// the tolerance band and the edge resolution settings.
+std::uint64_t scene_fingerprint(const Scene& scene);
+
+// Writes the roadmap (atomically: a failed write leaves `path` as it was).
+void save_roadmap(const Roadmap& roadmap, const Scene& scene, const std::string& path);
+
+// Reads a roadmap saved for `scene`; throws std::runtime_error naming the file and what
+// is wrong when it is not a roadmap, belongs to another scene, or is damaged.
+Roadmap load_roadmap(const Scene& scene, const std::string& path);
+
+}  // namespace gplanner

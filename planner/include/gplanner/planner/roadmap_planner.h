@@ -1,0 +1,71 @@
+#pragma once
+// PRM and lazy PRM over one roadmap, as G-Planner runs them on the GPU: milestones are
+// sampled and checked in one batch per round, joined to their k nearest neighbours
+// (GPU k-NN), and then
+// - PRM (multi-query) checks every new edge in one batch and searches the valid ones;
+// - lazy PRM (single query) searches all edges not known invalid, checks every
+//   unchecked edge of the found path in one batch, drops the invalid ones and searches
+//   again, until a path is valid or none is left (then the roadmap grows).
+// The found path is shortcut with batched checks and re-checked at a finer resolution.
+// Seeded and deterministic for a given seed (with a deterministic checker).
+
+#include <chrono>
+#include <memory>
+#include <random>
+#include <string>
+
+#include "gplanner/planner/collision_checker.h"
+#include "gplanner/planner/local_planner.h"
+#include "gplanner/planner/neighbor_finder.h"
+#include "gplanner/planner/plan_result.h"
+#include "gplanner/planner/roadmap.h"
+
+namespace gplanner {
+
+struct Scene;
+
+enum class RoadmapStrategy { kPrm, kLazyPrm };
+
+// "prm" / "lazyprm"; parse returns false for other names.
+const char* strategy_name(RoadmapStrategy strategy);
+bool parse_strategy(const std::string& name, RoadmapStrategy* strategy);
+
+class RoadmapPlanner {
+ public:
+  // scene, checker and neighbors must outlive the planner.
+  RoadmapPlanner(const Scene& scene, CollisionChecker* checker, NeighborFinder* neighbors,
+                 RoadmapStrategy strategy, const PlanOptions& options);
+
+  // Plans from start to goal (each shape [width], free: callers check them first),
+  // growing the roadmap until a path is found, the time limit passes, or should_stop
+  // says so.
+  PlanResult solve(const float* start, const float* goal);
+
+  const Roadmap& roadmap() const { return roadmap_; }
+  // Starts from a saved roadmap (its milestones and edge states are kept).
+  void set_roadmap(Roadmap roadmap) { roadmap_ = std::move(roadmap); }
+  const PlanOptions& options() const { return options_; }
+  RoadmapStrategy strategy() const { return strategy_; }
+
+ private:
+  std::size_t add_milestones(std::size_t count, PlanResult* result);
+  std::size_t connect(PlanResult* result);
+  void check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result);
+  bool out_of_time(PlanResult* result) const;
+  void report(const char* stage, const PlanResult& result) const;
+  double elapsed() const;
+
+  const Scene& scene_;
+  CollisionChecker* checker_;
+  NeighborFinder* neighbors_;
+  RoadmapStrategy strategy_;
+  PlanOptions options_;
+  LocalPlanner local_;
+  Roadmap roadmap_;
+  std::mt19937_64 rng_;
+  // Milestone samples drawn and found free so far: the free fraction sizes batches.
+  std::size_t states_checked_ = 0, states_free_ = 0;
+  std::chrono::steady_clock::time_point started_;
+};
+
+}  // namespace gplanner

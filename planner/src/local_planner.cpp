@@ -1,0 +1,131 @@
+#include "gplanner/planner/local_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include "gplanner/planner/parallel_for.h"
+#include "gplanner/planner/scene.h"
+#include "gplanner/planner/scene_metric.h"
+
+namespace gplanner {
+
+std::vector<int> coarse_to_fine_order(int segments) {
+  std::vector<int> order;
+  if (segments < 2) return order;
+  order.reserve(segments - 1);
+  // Breadth-first over intervals [lo, hi]: each interval's midpoint, then its halves.
+  std::vector<std::pair<int, int>> level{{0, segments}}, next;
+  while (!level.empty()) {
+    next.clear();
+    for (const auto& [lo, hi] : level) {
+      if (hi - lo < 2) continue;
+      const int mid = lo + (hi - lo) / 2;
+      order.push_back(mid);
+      next.emplace_back(lo, mid);
+      next.emplace_back(mid, hi);
+    }
+    level.swap(next);
+  }
+  return order;
+}
+
+LocalPlanner::LocalPlanner(const Scene& scene, CollisionChecker* checker,
+                           const LocalPlannerOptions& options)
+    : scene_(scene),
+      checker_(checker),
+      options_(options),
+      metric_(make_metric(scene.space, scene.planner)),
+      segment_length_(options.resolution_fraction * space_extent(scene.space, metric_)),
+      bound_(scene.robot, scene.space) {
+  if (!(options.resolution_fraction > 0) && !(options.max_displacement > 0))
+    throw std::invalid_argument("local planner: the resolution must be positive");
+}
+
+int LocalPlanner::segments(const float* a, const float* b) const {
+  const double length = options_.max_displacement > 0
+                            ? bound_.displacement(a, b) / options_.max_displacement
+                            : distance(metric_, a, b) / segment_length_;
+  if (!(length < 1e9)) throw std::invalid_argument("local planner: motion of unbounded length");
+  return std::max(1, static_cast<int>(std::ceil(length)));
+}
+
+void LocalPlanner::check_motions(const float* from, const float* to, std::size_t count,
+                                 std::uint8_t* invalid) {
+  const ConfigurationSpace& space = scene_.space;
+  const std::size_t width = space.width();
+  stats_.motions += count;
+  std::vector<int> segment_count(count);
+  std::vector<std::vector<int>> order(count);
+  std::size_t remaining = 0;
+  for (std::size_t e = 0; e < count; ++e) {
+    invalid[e] = 0;
+    segment_count[e] = segments(from + e * width, to + e * width);
+    order[e] = coarse_to_fine_order(segment_count[e]);
+    remaining += order[e].size();
+  }
+  // next[e]: how many of motion e's samples have been checked.
+  std::vector<std::size_t> next(count, 0);
+  std::vector<float> samples;
+  std::vector<std::uint8_t> verdicts;
+  std::size_t per_motion = 1;  // samples per motion this level: 1, 2, 4, ...
+  while (remaining > 0) {
+    const bool all_at_once = remaining <= options_.one_batch_samples;
+    std::vector<std::pair<std::uint32_t, int>> picks;  // (motion, sample index)
+    for (std::size_t e = 0; e < count; ++e) {
+      if (invalid[e]) continue;
+      const std::size_t take =
+          all_at_once ? order[e].size() - next[e] : std::min(per_motion, order[e].size() - next[e]);
+      for (std::size_t k = 0; k < take; ++k)
+        picks.emplace_back(static_cast<std::uint32_t>(e), order[e][next[e] + k]);
+      next[e] += take;
+    }
+    if (picks.empty()) break;
+    // Batches of at most max_batch_samples, so that memory stays bounded.
+    for (std::size_t first = 0; first < picks.size(); first += options_.max_batch_samples) {
+      const std::size_t n = std::min(options_.max_batch_samples, picks.size() - first);
+      samples.resize(n * width);
+      parallel_for(
+          n, 0,
+          [&](std::size_t begin, std::size_t end, int) {
+            for (std::size_t i = begin; i < end; ++i) {
+              const auto [e, j] = picks[first + i];
+              space.interpolate(from + e * width, to + e * width,
+                                static_cast<double>(j) / segment_count[e], &samples[i * width]);
+            }
+          },
+          256);
+      verdicts.assign(n, 0);
+      checker_->check(samples.data(), n, verdicts.data());
+      ++stats_.batches;
+      stats_.samples += n;
+      for (std::size_t i = 0; i < n; ++i)
+        if (verdicts[i]) invalid[picks[first + i].first] = 1;
+    }
+    remaining = 0;
+    for (std::size_t e = 0; e < count; ++e)
+      if (!invalid[e]) remaining += order[e].size() - next[e];
+    per_motion *= 2;
+  }
+}
+
+double LocalPlanner::last_valid_fraction(const float* a, const float* b) {
+  const ConfigurationSpace& space = scene_.space;
+  const std::size_t width = space.width();
+  const int n = segments(a, b);
+  std::vector<float> samples(static_cast<std::size_t>(n) * width);
+  for (int j = 1; j <= n; ++j)
+    space.interpolate(a, b, static_cast<double>(j) / n, &samples[(j - 1) * width]);
+  std::vector<std::uint8_t> verdicts(n);
+  checker_->check(samples.data(), n, verdicts.data());
+  ++stats_.batches;
+  ++stats_.motions;
+  stats_.samples += n;
+  for (int j = 1; j <= n; ++j)
+    if (verdicts[j - 1]) return static_cast<double>(j - 1) / n;
+  return 1.0;
+}
+
+}  // namespace gplanner

@@ -1,0 +1,52 @@
+#include "gplanner/planner/path_file.h"
+
+#include <iomanip>
+#include <vector>
+
+#include "gplanner/planner/atomic_file.h"
+#include "gplanner/planner/scene.h"
+
+namespace gplanner {
+
+void write_path_file(const std::string& path, const Scene& scene, const PlanResult& result,
+                     const std::string& planner, const std::string& backend) {
+  const ConfigurationSpace& space = scene.space;
+  const RobotModel& robot = scene.robot;
+  const int width = space.width();
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << std::setprecision(9);
+    out << "# A path from the start to the goal of " << scene.file << ", by gplan plan.\n";
+    out << "scene: \"" << scene.file << "\"\n";
+    out << "planner: " << planner << "\n";
+    out << "backend: " << backend << "\n";
+    out << "length: " << result.length << "  # under the planner's metric\n";
+    out << "entries: [";
+    for (int i = 0; i < width; ++i) out << (i ? ", " : "") << space.entry_name(robot, i);
+    out << "]\n";
+    out << "waypoints:\n";
+    std::vector<double> positions(robot.joints.size());
+    const std::size_t m = result.path.size() / width;
+    for (std::size_t w = 0; w < m; ++w) {
+      const float* q = &result.path[w * width];
+      out << "  - configuration: [";
+      for (int i = 0; i < width; ++i) out << (i ? ", " : "") << q[i];
+      out << "]\n";
+      const Eigen::Isometry3d X_WR = space.base_pose(q);
+      const Eigen::Quaterniond r(X_WR.linear());
+      const Eigen::Vector3d t = X_WR.translation();
+      out << "    base: {position: [" << t.x() << ", " << t.y() << ", " << t.z()
+          << "], quat_wxyz: [" << r.w() << ", " << r.x() << ", " << r.y() << ", " << r.z()
+          << "]}\n";
+      space.joint_positions(robot, q, positions.data());
+      bool any = false;
+      for (std::size_t j = 0; j < robot.joints.size(); ++j) {
+        if (!robot.joints[j].is_single_dof()) continue;
+        out << (any ? ", " : "    joints: {") << robot.joints[j].name << ": " << positions[j];
+        any = true;
+      }
+      if (any) out << "}\n";
+    }
+  });
+}
+
+}  // namespace gplanner

@@ -1,0 +1,268 @@
+#include "gplanner/planner/roadmap_planner.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gplanner/planner/graph_search.h"
+#include "gplanner/planner/path_shortcutting.h"
+#include "gplanner/planner/scene.h"
+
+namespace gplanner {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Adds the time from construction to destruction to `*sink`.
+class StageTimer {
+ public:
+  explicit StageTimer(double* sink) : sink_(sink), start_(Clock::now()) {}
+  ~StageTimer() { *sink_ += seconds_since(start_); }
+
+ private:
+  double* sink_;
+  Clock::time_point start_;
+};
+
+LocalPlannerOptions refined(LocalPlannerOptions options, int refinement) {
+  options.resolution_fraction /= refinement;
+  options.max_displacement /= refinement;
+  return options;
+}
+
+}  // namespace
+
+const char* strategy_name(RoadmapStrategy strategy) {
+  return strategy == RoadmapStrategy::kPrm ? "prm" : "lazyprm";
+}
+
+bool parse_strategy(const std::string& name, RoadmapStrategy* strategy) {
+  if (name == "prm") {
+    *strategy = RoadmapStrategy::kPrm;
+  } else if (name == "lazyprm") {
+    *strategy = RoadmapStrategy::kLazyPrm;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+PlanOptions plan_options(const Scene& scene) {
+  const PlannerSettings& s = scene.planner;
+  PlanOptions options;
+  options.seed = static_cast<unsigned long long>(s.number("seed"));
+  options.time_limit_s = s.number("time_limit_s");
+  options.milestones = static_cast<std::size_t>(s.number("roadmap.milestones"));
+  options.neighbors = static_cast<int>(s.number("roadmap.neighbors"));
+  options.shortcut_rounds = static_cast<int>(s.number("shortcut.rounds"));
+  options.shortcut_candidates = static_cast<int>(s.number("shortcut.candidates"));
+  options.local.resolution_fraction = s.number("edge_resolution");
+  options.local.max_displacement = s.number("max_displacement");
+  return options;
+}
+
+RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
+                               NeighborFinder* neighbors, RoadmapStrategy strategy,
+                               const PlanOptions& options)
+    : scene_(scene),
+      checker_(checker),
+      neighbors_(neighbors),
+      strategy_(strategy),
+      options_(options),
+      local_(scene, checker, options.local),
+      roadmap_(scene.space.width()),
+      rng_(options.seed) {}
+
+double RoadmapPlanner::elapsed() const { return seconds_since(started_); }
+
+bool RoadmapPlanner::out_of_time(PlanResult* result) const {
+  if (options_.should_stop && options_.should_stop()) {
+    result->stop_reason = "stopped";
+    return true;
+  }
+  if (elapsed() >= options_.time_limit_s) {
+    result->stop_reason = "time limit";
+    return true;
+  }
+  return false;
+}
+
+void RoadmapPlanner::report(const char* stage, const PlanResult& result) const {
+  if (!options_.progress) return;
+  std::size_t valid = 0;
+  for (const RoadmapEdge& e : roadmap_.edges()) valid += e.state == EdgeState::kValid;
+  options_.progress(
+      {stage, result.rounds, roadmap_.vertex_count(), roadmap_.edge_count(), valid, elapsed()});
+}
+
+std::size_t RoadmapPlanner::add_milestones(std::size_t count, PlanResult* result) {
+  // Batches sized by the free fraction seen so far, until `count` free milestones are in
+  // (or the time is up): a first batch of `count` samples, then usually one more.
+  const int width = scene_.space.width();
+  constexpr std::size_t kMaxBatch = std::size_t(1) << 22;
+  std::size_t added = 0;
+  while (added < count) {
+    const double free_rate =
+        states_checked_ ? std::max(0.01, static_cast<double>(states_free_) / states_checked_) : 1.0;
+    const std::size_t batch = std::min<std::size_t>(
+        kMaxBatch, static_cast<std::size_t>(std::ceil((count - added) / free_rate * 1.1)));
+    std::vector<float> q(batch * width);
+    {
+      StageTimer timer(&result->times.sampling);
+      for (std::size_t i = 0; i < batch; ++i) scene_.space.sample_uniform(&rng_, &q[i * width]);
+    }
+    std::vector<std::uint8_t> verdicts(batch);
+    {
+      StageTimer timer(&result->times.state_checks);
+      checker_->check(q.data(), batch, verdicts.data());
+    }
+    result->states_checked += batch;
+    states_checked_ += batch;
+    for (std::size_t i = 0; i < batch; ++i) {
+      if (verdicts[i]) continue;
+      ++states_free_;
+      if (added < count) {
+        roadmap_.add_vertex(&q[i * width]);
+        ++added;
+      }
+    }
+    if (out_of_time(result)) break;
+  }
+  return added;
+}
+
+std::size_t RoadmapPlanner::connect(PlanResult* result) {
+  StageTimer timer(&result->times.knn);
+  const std::size_t n = roadmap_.vertex_count();
+  const int k = options_.neighbors;
+  std::vector<int> nearest;
+  neighbors_->all_nearest(roadmap_.vertices().data(), n, k, &nearest);
+  const ConfigurationMetric& metric = local_.metric();
+  std::size_t added = 0;
+  for (std::size_t v = 0; v < n; ++v) {
+    for (int j = 0; j < k; ++j) {
+      const int w = nearest[v * k + j];
+      if (w < 0) break;
+      const float length = configuration_distance(metric, roadmap_.vertex(v), roadmap_.vertex(w));
+      if (roadmap_.add_edge(static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(w), length) >=
+          0) {
+        ++added;
+      }
+    }
+  }
+  return added;
+}
+
+void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result) {
+  if (edges.empty()) return;
+  StageTimer timer(&result->times.edge_checks);
+  const int width = scene_.space.width();
+  std::vector<float> from(edges.size() * width), to(edges.size() * width);
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const RoadmapEdge& e = roadmap_.edge(edges[i]);
+    std::copy_n(roadmap_.vertex(e.a), width, &from[i * width]);
+    std::copy_n(roadmap_.vertex(e.b), width, &to[i * width]);
+  }
+  std::vector<std::uint8_t> invalid(edges.size());
+  local_.check_motions(from.data(), to.data(), edges.size(), invalid.data());
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    roadmap_.edge(edges[i]).state = invalid[i] ? EdgeState::kInvalid : EdgeState::kValid;
+  result->edges_checked += edges.size();
+}
+
+PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
+  started_ = Clock::now();
+  PlanResult result;
+  local_.reset_stats();
+  const int width = scene_.space.width();
+  const std::uint32_t s = roadmap_.add_vertex(start);
+  const std::uint32_t g = roadmap_.add_vertex(goal);
+  LocalPlanner fine(scene_, checker_, refined(options_.local, options_.final_check_refinement));
+  const bool lazy = strategy_ == RoadmapStrategy::kLazyPrm;
+  GraphPath found;
+  for (std::size_t round = 0; found.vertices.empty(); ++round) {
+    if (out_of_time(&result)) break;
+    result.rounds = round + 1;
+    // The first round samples `milestones` (none more when a loaded roadmap has that
+    // many); later rounds double the roadmap.
+    const std::size_t have = roadmap_.vertex_count() - 2;
+    const std::size_t count = round == 0 ? (have >= options_.milestones ? 0 : options_.milestones)
+                                         : std::max(options_.milestones, have);
+    if (count > 0) add_milestones(count, &result);
+    report("milestones", result);
+    connect(&result);
+    report("neighbours", result);
+    if (!lazy) {
+      std::vector<std::uint32_t> unknown;
+      for (std::size_t e = 0; e < roadmap_.edge_count(); ++e)
+        if (roadmap_.edge(e).state == EdgeState::kUnknown) unknown.push_back(e);
+      check_edges(unknown, &result);
+      report("edges", result);
+    }
+    // Search; lazy PRM checks the unknown edges of each path found, until one is valid.
+    while (!out_of_time(&result)) {
+      GraphPath path;
+      {
+        StageTimer timer(&result.times.search);
+        path = shortest_path(roadmap_, local_.metric(), s, g, /*valid_edges_only=*/!lazy);
+      }
+      if (path.vertices.empty()) break;
+      std::vector<std::uint32_t> unknown;
+      for (const std::uint32_t e : path.edges)
+        if (roadmap_.edge(e).state == EdgeState::kUnknown) unknown.push_back(e);
+      if (!unknown.empty()) {
+        check_edges(unknown, &result);
+        report("edges", result);
+        continue;
+      }
+      // Every edge valid: re-check the path finely; an edge failing that is invalid.
+      std::vector<float> from(path.edges.size() * width), to(path.edges.size() * width);
+      for (std::size_t i = 0; i < path.edges.size(); ++i) {
+        std::copy_n(roadmap_.vertex(path.vertices[i]), width, &from[i * width]);
+        std::copy_n(roadmap_.vertex(path.vertices[i + 1]), width, &to[i * width]);
+      }
+      std::vector<std::uint8_t> invalid(path.edges.size());
+      {
+        StageTimer timer(&result.times.edge_checks);
+        fine.check_motions(from.data(), to.data(), path.edges.size(), invalid.data());
+      }
+      bool certified = true;
+      for (std::size_t i = 0; i < path.edges.size(); ++i) {
+        if (invalid[i]) {
+          roadmap_.edge(path.edges[i]).state = EdgeState::kInvalid;
+          certified = false;
+        }
+      }
+      if (certified) {
+        found = path;
+        break;
+      }
+    }
+  }
+  result.milestones = roadmap_.vertex_count();
+  result.edges = roadmap_.edge_count();
+  if (!found.vertices.empty()) {
+    result.solved = true;
+    result.stop_reason = "solved";
+    for (const std::uint32_t v : found.vertices) {
+      const float* q = roadmap_.vertex(v);
+      result.path.insert(result.path.end(), q, q + width);
+    }
+    result.length_before_shortcut = path_length(local_.metric(), result.path, width);
+    result.length = result.length_before_shortcut;
+    if (options_.shortcut_rounds > 0) {
+      StageTimer timer(&result.times.shortcutting);
+      result.length = shortcut_path(scene_.space, &local_, &fine, options_.shortcut_rounds,
+                                    options_.shortcut_candidates, &rng_, &result.path);
+      report("shortcut", result);
+    }
+  }
+  result.samples_checked = local_.stats().samples;
+  result.times.total = elapsed();
+  return result;
+}
+
+}  // namespace gplanner

@@ -1,0 +1,84 @@
+// A* over roadmaps against Dijkstra (no heuristic) on random geometric graphs.
+
+#include "gplanner/planner/graph_search.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <queue>
+#include <random>
+
+namespace gplanner {
+namespace {
+
+double dijkstra(const Roadmap& roadmap, std::uint32_t s, std::uint32_t g, bool valid_only) {
+  std::vector<double> cost(roadmap.vertex_count(), std::numeric_limits<double>::infinity());
+  using Entry = std::pair<double, std::uint32_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+  cost[s] = 0;
+  open.emplace(0, s);
+  while (!open.empty()) {
+    const auto [c, v] = open.top();
+    open.pop();
+    if (c > cost[v]) continue;
+    for (const std::uint32_t e : roadmap.edges_at(v)) {
+      const RoadmapEdge& edge = roadmap.edge(e);
+      if (edge.state == EdgeState::kInvalid) continue;
+      if (valid_only && edge.state != EdgeState::kValid) continue;
+      const std::uint32_t w = edge.a == v ? edge.b : edge.a;
+      if (c + edge.length < cost[w]) {
+        cost[w] = c + edge.length;
+        open.emplace(cost[w], w);
+      }
+    }
+  }
+  return cost[g];
+}
+
+TEST(GraphSearch, FindsTheShortestPathOverUsableEdges) {
+  ConfigurationMetric metric;  // joints only: 2 of them
+  metric.joint_count = 2;
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<float> coord(0, 10);
+  for (int trial = 0; trial < 20; ++trial) {
+    Roadmap roadmap(2);
+    for (int i = 0; i < 200; ++i) {
+      const float q[] = {coord(rng), coord(rng)};
+      roadmap.add_vertex(q);
+    }
+    std::uniform_int_distribution<std::uint32_t> pick(0, 199);
+    std::uniform_int_distribution<int> state(0, 2);
+    for (int e = 0; e < 800; ++e) {
+      const std::uint32_t a = pick(rng), b = pick(rng);
+      roadmap.add_edge(a, b,
+                       configuration_distance(metric, roadmap.vertex(a), roadmap.vertex(b)),
+                       static_cast<EdgeState>(state(rng)));
+    }
+    for (const bool valid_only : {false, true}) {
+      const double expected = dijkstra(roadmap, 0, 1, valid_only);
+      const GraphPath path = shortest_path(roadmap, metric, 0, 1, valid_only);
+      if (std::isinf(expected)) {
+        EXPECT_TRUE(path.vertices.empty());
+        continue;
+      }
+      ASSERT_FALSE(path.vertices.empty());
+      EXPECT_NEAR(path.length, expected, 1e-4 * expected);
+      EXPECT_EQ(path.vertices.front(), 0u);
+      EXPECT_EQ(path.vertices.back(), 1u);
+      ASSERT_EQ(path.edges.size() + 1, path.vertices.size());
+      double sum = 0;
+      for (std::size_t i = 0; i < path.edges.size(); ++i) {
+        const RoadmapEdge& e = roadmap.edge(path.edges[i]);
+        EXPECT_NE(e.state, EdgeState::kInvalid);
+        if (valid_only) EXPECT_EQ(e.state, EdgeState::kValid);
+        EXPECT_TRUE((e.a == path.vertices[i] && e.b == path.vertices[i + 1]) ||
+                    (e.b == path.vertices[i] && e.a == path.vertices[i + 1]));
+        sum += e.length;
+      }
+      EXPECT_NEAR(sum, path.length, 1e-4 * expected);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace gplanner

@@ -1,0 +1,199 @@
+// Local planning: sample order, resolution, the displacement bound, and batched motion
+// checks against checking every sample one by one.
+
+#include "gplanner/planner/local_planner.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "gplanner/planner/cpu_checker.h"
+#include "gplanner/planner/forward_kinematics.h"
+#include "gplanner/planner/motion_bound.h"
+#include "gplanner/planner/scene.h"
+#include "gplanner/planner/scene_metric.h"
+#include "planner/scene_test_support.h"
+#include "test_support.h"
+
+namespace gplanner {
+namespace {
+
+Scene load(const std::string& name) {
+  return load_scene(testing::project_root() + "/scenes/" + name);
+}
+
+TEST(CoarseToFineOrder, VisitsEveryInteriorSampleOnceMidpointFirst) {
+  for (int n : {1, 2, 3, 4, 7, 8, 100, 129}) {
+    const std::vector<int> order = coarse_to_fine_order(n);
+    ASSERT_EQ(order.size(), static_cast<std::size_t>(std::max(0, n - 1))) << n;
+    const std::set<int> unique(order.begin(), order.end());
+    EXPECT_EQ(unique.size(), order.size()) << n;
+    if (n >= 2) {
+      EXPECT_EQ(*unique.begin(), 1);
+      EXPECT_EQ(*unique.rbegin(), n - 1);
+      EXPECT_EQ(order.front(), n / 2);
+    }
+  }
+  // The first three of 8 segments: 4, then 2 and 6.
+  const std::vector<int> eight = coarse_to_fine_order(8);
+  EXPECT_EQ(std::vector<int>(eight.begin(), eight.begin() + 3), (std::vector<int>{4, 2, 6}));
+}
+
+TEST(LocalPlanner, SegmentsFollowTheResolutionOfTheLargestExtent) {
+  const Scene scene = load("piano.yaml");
+  CpuChecker checker(scene);
+  LocalPlanner local(scene, &checker);
+  const ConfigurationMetric metric = make_metric(scene.space, scene.planner);
+  const double extent = space_extent(scene.space, metric);
+  EXPECT_NEAR(local.segment_length(), 0.01 * extent, 1e-9);
+  const std::vector<float> q = testing::sample_configurations(scene, 200, 3);
+  const int w = scene.space.width();
+  for (int i = 0; i + 1 < 200; i += 2) {
+    const double d = distance(metric, &q[i * w], &q[(i + 1) * w]);
+    EXPECT_EQ(local.segments(&q[i * w], &q[(i + 1) * w]),
+              std::max(1, static_cast<int>(std::ceil(d / local.segment_length()))));
+  }
+  EXPECT_EQ(local.segments(&q[0], &q[0]), 1);
+}
+
+// The straight-line motion sampled at every interior point, one configuration at a time.
+std::vector<std::uint8_t> check_one_by_one(const Scene& scene, CollisionChecker* checker,
+                                           const LocalPlanner& local, const std::vector<float>& a,
+                                           const std::vector<float>& b, std::size_t count) {
+  const int w = scene.space.width();
+  std::vector<std::uint8_t> invalid(count, 0);
+  std::vector<float> q(w);
+  for (std::size_t e = 0; e < count; ++e) {
+    const int n = local.segments(&a[e * w], &b[e * w]);
+    for (int j = 1; j < n && !invalid[e]; ++j) {
+      scene.space.interpolate(&a[e * w], &b[e * w], static_cast<double>(j) / n, q.data());
+      invalid[e] = checker->in_collision(q.data()) ? 1 : 0;
+    }
+  }
+  return invalid;
+}
+
+void expect_batched_equals_one_by_one(const std::string& scene_name, double scale) {
+  const Scene scene = load(scene_name);
+  CpuChecker checker(scene);
+  const int w = scene.space.width();
+  // Motions between free configurations and free configurations nearby (scaled toward
+  // them), so that some are valid and some are not.
+  const std::vector<float> pool = testing::sample_configurations(scene, 4000, 11);
+  std::vector<std::uint8_t> verdicts(4000);
+  checker.check(pool.data(), pool.size() / w, verdicts.data());
+  std::vector<float> a, b, mid(w);
+  for (std::size_t i = 0; i + 1 < 4000; i += 2) {
+    if (verdicts[i] || verdicts[i + 1]) continue;
+    scene.space.interpolate(&pool[i * w], &pool[(i + 1) * w], scale, mid.data());
+    a.insert(a.end(), &pool[i * w], &pool[i * w] + w);
+    b.insert(b.end(), mid.begin(), mid.end());
+  }
+  const std::size_t count = a.size() / w;
+  ASSERT_GT(count, 10u) << scene_name;
+  LocalPlannerOptions small_batches;
+  small_batches.one_batch_samples = 16;  // force the level-by-level path
+  small_batches.max_batch_samples = 64;
+  LocalPlanner staged(scene, &checker, small_batches);
+  std::vector<std::uint8_t> invalid(count);
+  staged.check_motions(a.data(), b.data(), count, invalid.data());
+  const std::vector<std::uint8_t> expected = check_one_by_one(scene, &checker, staged, a, b, count);
+  EXPECT_EQ(invalid, expected) << scene_name;
+  std::size_t bad = std::count(invalid.begin(), invalid.end(), 1);
+  EXPECT_GT(bad, 0u) << scene_name;
+  EXPECT_LT(bad, count) << scene_name;
+  EXPECT_GE(staged.stats().batches, 2u);  // level by level
+  // One batch gives the same verdicts.
+  LocalPlanner whole(scene, &checker);
+  std::vector<std::uint8_t> again(count);
+  whole.check_motions(a.data(), b.data(), count, again.data());
+  EXPECT_EQ(again, expected) << scene_name;
+  EXPECT_LE(staged.stats().samples, whole.stats().samples);
+}
+
+TEST(LocalPlanner, BatchedChecksEqualCheckingEverySampleRigid) {
+  expect_batched_equals_one_by_one("piano.yaml", 0.05);
+}
+
+TEST(LocalPlanner, BatchedChecksEqualCheckingEverySampleArticulated) {
+  expect_batched_equals_one_by_one("pr2_base_arm.yaml", 0.3);
+}
+
+TEST(LocalPlanner, LastValidFractionStopsBeforeTheFirstCollision) {
+  const Scene scene = load("piano.yaml");
+  CpuChecker checker(scene);
+  LocalPlanner local(scene, &checker);
+  // The scene's straight line from start to goal collides.
+  const double f = local.last_valid_fraction(scene.start.data(), scene.goal.data());
+  EXPECT_GT(f, 0.0);
+  EXPECT_LT(f, 1.0);
+  const int n = local.segments(scene.start.data(), scene.goal.data());
+  const int w = scene.space.width();
+  std::vector<float> q(w);
+  for (int j = 1; j <= static_cast<int>(std::lround(f * n)); ++j) {
+    scene.space.interpolate(scene.start.data(), scene.goal.data(), double(j) / n, q.data());
+    EXPECT_FALSE(checker.in_collision(q.data())) << j;
+  }
+  scene.space.interpolate(scene.start.data(), scene.goal.data(), f + 1.0 / n, q.data());
+  EXPECT_TRUE(checker.in_collision(q.data()));
+}
+
+// Largest distance any vertex of the robot moves between configurations a and b.
+double vertex_motion(const Scene& scene, const float* a, const float* b) {
+  const RobotModel& robot = scene.robot;
+  std::vector<double> pa(robot.joints.size()), pb(robot.joints.size());
+  scene.space.joint_positions(robot, a, pa.data());
+  scene.space.joint_positions(robot, b, pb.data());
+  std::vector<Eigen::Isometry3d> Xa, Xb;
+  forward_kinematics(robot, scene.space.base_pose(a), pa.data(), &Xa);
+  forward_kinematics(robot, scene.space.base_pose(b), pb.data(), &Xb);
+  double most = 0;
+  for (std::size_t l = 0; l < robot.links.size(); ++l)
+    for (const Eigen::Vector3d& p : robot.links[l].collision.vertices)
+      most = std::max(most, (Xa[l] * p - Xb[l] * p).norm());
+  return most;
+}
+
+TEST(MotionBound, BoundsEveryVertexMotion) {
+  for (const char* name : {"piano.yaml", "humanoid.yaml", "pr2_reach.yaml", "pr2_base_arm.yaml"}) {
+    const Scene scene = load(name);
+    const MotionBound bound(scene.robot, scene.space);
+    const int w = scene.space.width();
+    const std::vector<float> q = testing::sample_configurations(scene, 60, 5);
+    std::vector<float> near(w);
+    double tightest = 1e9;
+    for (int i = 0; i + 1 < 60; i += 2) {
+      // Whole motions, and short ones (where the bound matters for sampling).
+      for (double t : {1.0, 0.02}) {
+        scene.space.interpolate(&q[i * w], &q[(i + 1) * w], t, near.data());
+        const double actual = vertex_motion(scene, &q[i * w], near.data());
+        const double b = bound.displacement(&q[i * w], near.data());
+        EXPECT_GE(b, actual * (1 - 1e-6)) << name;
+        if (actual > 0) tightest = std::min(tightest, b / actual);
+      }
+    }
+    EXPECT_LT(tightest, 20.0) << name << ": the bound should not be wildly loose";
+  }
+}
+
+TEST(LocalPlanner, MaxDisplacementSetsTheSamples) {
+  const Scene scene = load("pr2_base_arm.yaml");
+  CpuChecker checker(scene);
+  LocalPlannerOptions options;
+  options.max_displacement = 0.01;
+  LocalPlanner local(scene, &checker, options);
+  const MotionBound bound(scene.robot, scene.space);
+  const std::vector<float> q = testing::sample_configurations(scene, 20, 9);
+  const int w = scene.space.width();
+  for (int i = 0; i + 1 < 20; i += 2) {
+    const int n = local.segments(&q[i * w], &q[(i + 1) * w]);
+    EXPECT_EQ(n, std::max(1, static_cast<int>(std::ceil(
+                                 bound.displacement(&q[i * w], &q[(i + 1) * w]) / 0.01))));
+  }
+}
+
+}  // namespace
+}  // namespace gplanner

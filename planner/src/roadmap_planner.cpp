@@ -137,14 +137,16 @@ std::size_t RoadmapPlanner::add_milestones(std::size_t count, PlanResult* result
 std::size_t RoadmapPlanner::connect(PlanResult* result) {
   StageTimer timer(&result->times.knn);
   const std::size_t n = roadmap_.vertex_count();
+  const std::size_t first = std::min(connected_, n);
   const int k = options_.neighbors;
   std::vector<int> nearest;
-  neighbors_->all_nearest(roadmap_.vertices().data(), n, k, &nearest);
+  neighbors_->nearest_of_new(roadmap_.vertices().data(), n, first, k, &nearest);
+  connected_ = n;
   const ConfigurationMetric& metric = local_.metric();
   std::size_t added = 0;
-  for (std::size_t v = 0; v < n; ++v) {
+  for (std::size_t v = first; v < n; ++v) {
     for (int j = 0; j < k; ++j) {
-      const int w = nearest[v * k + j];
+      const int w = nearest[(v - first) * k + j];
       if (w < 0) break;
       const float length = configuration_distance(metric, roadmap_.vertex(v), roadmap_.vertex(w));
       if (roadmap_.add_edge(static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(w), length) >=

@@ -1,7 +1,7 @@
 #pragma once
-// k nearest neighbours of every roadmap milestone under the planner's metric: on the
-// GPU (knn_gpu) when the planner runs the gpu backend and a GPU is there, otherwise the
-// CPU reference on all host threads.
+// Nearest neighbours of new roadmap milestones under the planner's metric: on the GPU
+// (knn_gpu, every milestone's neighbours at once) when the planner runs the gpu backend
+// and a GPU is there, otherwise OMPL's GNAT on the CPU, grown as milestones come.
 
 #include <memory>
 #include <string>
@@ -16,14 +16,16 @@ class NeighborFinder {
   virtual ~NeighborFinder() = default;
   // "gpu" or "cpu": where it runs.
   virtual std::string device() const = 0;
-  // points: shape [n, metric.width()]; indices: shape [n, k], nearest first, the point
+  // points: shape [n, metric.width()], of which [0, first_new) were given to earlier
+  // calls in the same order (a call with fewer starts afresh). indices: shape
+  // [n - first_new, k]: for each new point its k nearest among all n, nearest first,
   // itself excluded, -1 where fewer than k others exist.
-  virtual void all_nearest(const float* points, std::size_t n, int k,
-                           std::vector<int>* indices) = 0;
+  virtual void nearest_of_new(const float* points, std::size_t n, std::size_t first_new, int k,
+                              std::vector<int>* indices) = 0;
 };
 
-// A GPU finder for backend "gpu" when a GPU can be used, else the CPU reference
-// (`notice`, when given, says why in one line).
+// The GPU finder for backend "gpu" when a GPU can be used, else the CPU one (`notice`,
+// when given, then says why in one line).
 std::unique_ptr<NeighborFinder> make_neighbor_finder(const ConfigurationMetric& metric,
                                                      const std::string& backend,
                                                      std::string* notice = nullptr);

@@ -43,7 +43,10 @@ class RoadmapPlanner {
 
   const Roadmap& roadmap() const { return roadmap_; }
   // Starts from a saved roadmap (its milestones and edge states are kept).
-  void set_roadmap(Roadmap roadmap) { roadmap_ = std::move(roadmap); }
+  void set_roadmap(Roadmap roadmap) {
+    roadmap_ = std::move(roadmap);
+    connected_ = 0;
+  }
   const PlanOptions& options() const { return options_; }
   RoadmapStrategy strategy() const { return strategy_; }
 
@@ -65,6 +68,8 @@ class RoadmapPlanner {
   std::mt19937_64 rng_;
   // Milestone samples drawn and found free so far: the free fraction sizes batches.
   std::size_t states_checked_ = 0, states_free_ = 0;
+  // Milestones [0, connected_) have been joined to their neighbours.
+  std::size_t connected_ = 0;
   std::chrono::steady_clock::time_point started_;
 };
 

@@ -1,0 +1,28 @@
+#pragma once
+// A scene's configuration space as an OMPL state space, with the planner's metric:
+// - a rigid robot: ompl::base::SE3StateSpace (position weighted by the position weight,
+//   SO(3) by twice the rotation weight, since OMPL's SO(3) distance is half the
+//   rotation angle);
+// - otherwise a compound space: the base (SE3 or SE2) when it moves, then one subspace
+//   per planned joint in scene order (SO2 for continuous joints, a bounded 1-D real
+//   vector space for the others), each weighted by the joint weight.
+// Distances, interpolation, the largest extent and so the motion resolution
+// (edge_resolution, as the longest valid segment fraction) equal the planner's own.
+
+#include <ompl/base/StateSpace.h>
+
+namespace gplanner {
+
+struct Scene;
+
+namespace ompl_adapters {
+
+ompl::base::StateSpacePtr make_state_space(const Scene& scene);
+
+// Conversions between an OMPL state of make_state_space(scene) and a configuration row
+// (shape [scene.space.width()]).
+void state_to_row(const Scene& scene, const ompl::base::State* state, float* row);
+void row_to_state(const Scene& scene, const float* row, ompl::base::State* state);
+
+}  // namespace ompl_adapters
+}  // namespace gplanner

@@ -1,0 +1,145 @@
+#include "gplanner/planner/ompl/state_space.h"
+
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+#include <ompl/base/spaces/SO2StateSpace.h>
+
+#include "gplanner/planner/scene.h"
+
+namespace gplanner::ompl_adapters {
+namespace {
+
+namespace ob = ompl::base;
+
+double weight(const Scene& scene, const char* key) {
+  return scene.planner.number(std::string("distance_weights.") + key);
+}
+
+bool has_joints(const Scene& scene) { return !scene.space.planned_joints.empty(); }
+
+// The base subspace's state inside `state` (which may be the base itself).
+const ob::State* base_state(const Scene& scene, const ob::State* state) {
+  return has_joints(scene) ? state->as<ob::CompoundState>()->components[0] : state;
+}
+ob::State* base_state(const Scene& scene, ob::State* state) {
+  return has_joints(scene) ? state->as<ob::CompoundState>()->components[0] : state;
+}
+
+}  // namespace
+
+ob::StateSpacePtr make_state_space(const Scene& scene) {
+  const ConfigurationSpace& space = scene.space;
+  ob::StateSpacePtr base;
+  if (space.base == BaseType::kFloating) {
+    auto se3 = std::make_shared<ob::SE3StateSpace>();
+    ob::RealVectorBounds bounds(3);
+    for (int k = 0; k < 3; ++k) {
+      bounds.setLow(k, space.base_min[k]);
+      bounds.setHigh(k, space.base_max[k]);
+    }
+    se3->setBounds(bounds);
+    se3->setSubspaceWeight(0, weight(scene, "position"));
+    se3->setSubspaceWeight(1, 2 * weight(scene, "rotation"));
+    base = se3;
+  } else if (space.base == BaseType::kPlanar) {
+    auto se2 = std::make_shared<ob::SE2StateSpace>();
+    ob::RealVectorBounds bounds(2);
+    for (int k = 0; k < 2; ++k) {
+      bounds.setLow(k, space.base_min[k]);
+      bounds.setHigh(k, space.base_max[k]);
+    }
+    se2->setBounds(bounds);
+    se2->setSubspaceWeight(0, weight(scene, "position"));
+    se2->setSubspaceWeight(1, weight(scene, "rotation"));
+    base = se2;
+  }
+  ob::StateSpacePtr result;
+  if (!has_joints(scene)) {
+    result = base;
+  } else {
+    auto compound = std::make_shared<ob::CompoundStateSpace>();
+    if (base) compound->addSubspace(base, 1.0);
+    const double w = weight(scene, "joint");
+    for (std::size_t j = 0; j < space.planned_joints.size(); ++j) {
+      const std::string& name = scene.robot.joints[space.planned_joints[j]].name;
+      ob::StateSpacePtr joint;
+      if (space.continuous[j]) {
+        joint = std::make_shared<ob::SO2StateSpace>();
+      } else {
+        auto line = std::make_shared<ob::RealVectorStateSpace>(1);
+        line->setBounds(space.lower[j], space.upper[j]);
+        joint = line;
+      }
+      joint->setName(name);
+      compound->addSubspace(joint, w);
+    }
+    compound->lock();
+    result = compound;
+  }
+  if (!result) {
+    // A fixed base and no planned joints: nothing to plan, but a valid (0-D) space.
+    result = std::make_shared<ob::RealVectorStateSpace>(0);
+  }
+  result->setLongestValidSegmentFraction(scene.planner.number("edge_resolution"));
+  return result;
+}
+
+void state_to_row(const Scene& scene, const ob::State* state, float* row) {
+  const ConfigurationSpace& space = scene.space;
+  const ob::State* base = base_state(scene, state);
+  if (space.base == BaseType::kFloating) {
+    const auto* s = base->as<ob::SE3StateSpace::StateType>();
+    const ob::SO3StateSpace::StateType& r = s->rotation();
+    const float values[] = {float(s->getX()), float(s->getY()), float(s->getZ()), float(r.w),
+                            float(r.x),       float(r.y),       float(r.z)};
+    std::copy(values, values + 7, row);
+  } else if (space.base == BaseType::kPlanar) {
+    const auto* s = base->as<ob::SE2StateSpace::StateType>();
+    row[0] = float(s->getX());
+    row[1] = float(s->getY());
+    row[2] = float(s->getYaw());
+  }
+  if (!has_joints(scene)) return;
+  const auto* compound = state->as<ob::CompoundState>();
+  const int first = space.base == BaseType::kFixed ? 0 : 1;
+  const int offset = space.base_width();
+  for (std::size_t j = 0; j < space.planned_joints.size(); ++j) {
+    const ob::State* joint = compound->components[first + j];
+    row[offset + j] = space.continuous[j]
+                          ? float(joint->as<ob::SO2StateSpace::StateType>()->value)
+                          : float(joint->as<ob::RealVectorStateSpace::StateType>()->values[0]);
+  }
+}
+
+void row_to_state(const Scene& scene, const float* row, ob::State* state) {
+  const ConfigurationSpace& space = scene.space;
+  ob::State* base = base_state(scene, state);
+  if (space.base == BaseType::kFloating) {
+    auto* s = base->as<ob::SE3StateSpace::StateType>();
+    s->setXYZ(row[0], row[1], row[2]);
+    ob::SO3StateSpace::StateType& r = s->rotation();
+    r.w = row[3];
+    r.x = row[4];
+    r.y = row[5];
+    r.z = row[6];
+  } else if (space.base == BaseType::kPlanar) {
+    auto* s = base->as<ob::SE2StateSpace::StateType>();
+    s->setXY(row[0], row[1]);
+    s->setYaw(row[2]);
+  }
+  if (!has_joints(scene)) return;
+  auto* compound = state->as<ob::CompoundState>();
+  const int first = space.base == BaseType::kFixed ? 0 : 1;
+  const int offset = space.base_width();
+  for (std::size_t j = 0; j < space.planned_joints.size(); ++j) {
+    ob::State* joint = compound->components[first + j];
+    if (space.continuous[j]) {
+      joint->as<ob::SO2StateSpace::StateType>()->value = row[offset + j];
+    } else {
+      joint->as<ob::RealVectorStateSpace::StateType>()->values[0] = row[offset + j];
+    }
+  }
+}
+
+}  // namespace gplanner::ompl_adapters

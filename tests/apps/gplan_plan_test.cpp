@@ -1,0 +1,138 @@
+// `gplan plan` through the real binary: every shipped scene planned with lazy PRM (on
+// the cpu backend here, on the GPU in the *Gpu* cases), the path file read back and
+// re-checked by FCL at a tenth of the edge resolution; usage errors, no path within
+// the limit, and roadmap files.
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "gplanner/collision_gpu/gpu_device.h"
+#include "gplanner/planner/scene.h"
+#include "planner/scene_test_support.h"
+#include "test_support.h"
+
+namespace gplanner {
+namespace {
+
+using testing::CommandResult;
+using testing::run_gplan;
+using testing::ScratchFolder;
+
+std::string scene_path(const std::string& file) {
+  return testing::project_root() + "/scenes/" + file;
+}
+
+// The configurations of a path file.
+std::vector<float> read_path(const std::string& file, int width) {
+  const YAML::Node root = YAML::LoadFile(file);
+  std::vector<float> path;
+  for (const YAML::Node& waypoint : root["waypoints"]) {
+    const YAML::Node q = waypoint["configuration"];
+    EXPECT_EQ(static_cast<int>(q.size()), width);
+    for (const YAML::Node& v : q) path.push_back(v.as<float>());
+    EXPECT_TRUE(waypoint["base"]["position"]) << file;
+    EXPECT_TRUE(waypoint["base"]["quat_wxyz"]) << file;
+  }
+  return path;
+}
+
+std::string json_text(const std::string& output, const std::string& key) {
+  std::smatch m;
+  if (std::regex_search(output, m, std::regex("\"" + key + "\":\"([^\"]*)\""))) return m[1];
+  return "";
+}
+
+void expect_plans(const std::string& file, const std::string& backend) {
+  const Scene scene = load_scene(scene_path(file));
+  ScratchFolder scratch;
+  const std::string out = scratch.path() + "/path.yaml";
+  const CommandResult run = run_gplan("plan '" + scene_path(file) + "' --backend " + backend +
+                                      " --time-limit 600 --json --out '" + out + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("\"solved\":true"), std::string::npos) << run.output;
+  EXPECT_EQ(json_text(run.output, "backend"), backend) << run.output;
+  EXPECT_EQ(json_text(run.output, "knn"), backend) << run.output;
+  EXPECT_NE(run.output.find("time        "), std::string::npos) << run.output;
+  const std::vector<float> path = read_path(out, scene.space.width());
+  EXPECT_EQ(testing::path_problem(scene, path), "") << run.output;
+  std::cout << file << " (" << backend << "): " << run.output.substr(run.output.rfind('{'));
+}
+
+class GplanPlansOnCpu : public ::testing::TestWithParam<std::string> {};
+TEST_P(GplanPlansOnCpu, AFreePath) { expect_plans(GetParam(), "cpu"); }
+
+class GplanPlansOnGpu : public ::testing::TestWithParam<std::string> {};
+TEST_P(GplanPlansOnGpu, AFreePath) {
+  const GpuDevice device = query_gpu_device();
+  if (!device.available) GTEST_SKIP() << "no GPU: " << device.reason;
+  expect_plans(GetParam(), "gpu");
+}
+
+std::string name_of(const ::testing::TestParamInfo<std::string>& info) {
+  return testing::scene_test_name(info.param);
+}
+INSTANTIATE_TEST_SUITE_P(Scenes, GplanPlansOnCpu,
+                         ::testing::ValuesIn(testing::shipped_scene_files()), name_of);
+INSTANTIATE_TEST_SUITE_P(Scenes, GplanPlansOnGpu,
+                         ::testing::ValuesIn(testing::shipped_scene_files()), name_of);
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(GplanPlansOnCpu);
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(GplanPlansOnGpu);
+
+TEST(GplanPlan, NoPathWithinTheLimitExitsFourAndWritesNothing) {
+  ScratchFolder scratch;
+  const std::string out = scratch.path() + "/path.yaml";
+  const CommandResult run = run_gplan("plan '" + scene_path("piano.yaml") +
+                                      "' --backend cpu --milestones 20 --time-limit 0.001 --out '" +
+                                      out + "'");
+  EXPECT_EQ(run.exit_code, 4) << run.output;
+  EXPECT_NE(run.output.find("no path found within"), std::string::npos) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(GplanPlan, UsageErrorsNameTheOption) {
+  const std::string scene = "'" + scene_path("piano.yaml") + "'";
+  for (const auto& [arguments, option] : std::vector<std::pair<std::string, std::string>>{
+           {"--planner rrt", "--planner"},
+           {"--backend nosuch", "--backend"},
+           {"--time-limit -1", "--time-limit"},
+           {"--time-limit soon", "--time-limit"},
+           {"--milestones 0", "--milestones"},
+           {"--seed x", "--seed"},
+           {"--out /no/such/folder/p.yaml", "--out"},
+           {"--load-roadmap /no/such/file", "--load-roadmap"},
+           {"--bogus 1", "--bogus"}}) {
+    const CommandResult run = run_gplan("plan " + scene + " " + arguments);
+    EXPECT_EQ(run.exit_code, 2) << arguments << "\n" << run.output;
+    EXPECT_NE(run.output.find(option), std::string::npos) << arguments << "\n" << run.output;
+  }
+  EXPECT_EQ(run_gplan("plan").exit_code, 2);
+}
+
+TEST(GplanPlan, RoadmapsAreSavedLoadedAndRefusedForOtherScenes) {
+  ScratchFolder scratch;
+  const std::string roadmap = scratch.path() + "/arm.roadmap";
+  const std::string scene = "'" + scene_path("pr2_base_arm.yaml") + "'";
+  const CommandResult first = run_gplan("plan " + scene +
+                                        " --backend cpu --planner prm --milestones 250 "
+                                        "--save-roadmap '" + roadmap + "'");
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  ASSERT_TRUE(std::filesystem::exists(roadmap));
+  const CommandResult again = run_gplan("plan " + scene +
+                                        " --backend cpu --planner prm --milestones 250 --json "
+                                        "--load-roadmap '" + roadmap + "'");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("\"states_checked\":0,"), std::string::npos) << again.output;
+  const CommandResult other = run_gplan("plan '" + scene_path("pr2_reach.yaml") +
+                                        "' --backend cpu --load-roadmap '" + roadmap + "'");
+  EXPECT_NE(other.exit_code, 0);
+  EXPECT_NE(other.output.find(roadmap + ": roadmap belongs to another scene"), std::string::npos)
+      << other.output;
+}
+
+}  // namespace
+}  // namespace gplanner

@@ -356,6 +356,24 @@ TEST_F(SceneErrors, UnknownPlannerSetting) {
                            {"unknown planner setting"}));
 }
 
+TEST_F(SceneErrors, PlannerSettingOutOfRange) {
+  const std::vector<std::vector<std::string>> cases = {
+      {"time_limit_s: 0\n", "time_limit_s: 0", "planner.time_limit_s", "positive"},
+      {"edge_resolution: 1.5\n", "edge_resolution: 1.5", "planner.edge_resolution", "(0, 1]"},
+      {"max_displacement: -0.1\n", "max_displacement: -0.1", "planner.max_displacement", "0"},
+      {"roadmap: {neighbors: 100}\n", "neighbors: 100", "planner.roadmap.neighbors", "1 to 64"},
+      {"roadmap:\n    milestones: 2.5\n", "milestones: 2.5", "planner.roadmap.milestones",
+       "whole number"},
+      {"shortcut: {rounds: -1}\n", "rounds: -1", "planner.shortcut.rounds", "whole number"},
+      {"distance_weights: {rotation: -2}\n", "rotation: -2", "planner.distance_weights.rotation",
+       "0 or more"}};
+  for (const auto& c : cases) {
+    MeshScene s;
+    s.tail = "planner:\n  " + c[0];
+    EXPECT_TRUE(SceneFailsAt(s.text(), c[1], c[2], {c[3]})) << c[0];
+  }
+}
+
 TEST_F(SceneErrors, MissingRequiredKey) {
   MeshScene s;
   s.goal = "";

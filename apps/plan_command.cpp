@@ -11,6 +11,7 @@
 #include "gplanner/planner/checker_factory.h"
 #include "gplanner/planner/neighbor_finder.h"
 #include "gplanner/planner/path_file.h"
+#include "gplanner/planner/path_picture.h"
 #include "gplanner/planner/roadmap_planner.h"
 #include "gplanner/planner/scene.h"
 #include "gplanner/planner/scene_metric.h"
@@ -50,7 +51,7 @@ void require_writable_file(const std::string& option, const std::string& file) {
 int run_plan(int argc, char** argv) {
   const CommandLine args(argc, argv, 2,
                          {"planner", "backend", "seed", "time-limit", "milestones", "traversal",
-                          "threads", "load-roadmap", "save-roadmap", "out"},
+                          "threads", "load-roadmap", "save-roadmap", "out", "picture"},
                          {"json"});
   if (args.positionals().size() != 1) throw UsageError("gplan plan takes one scene file");
   const std::string scene_file = args.positionals()[0];
@@ -68,7 +69,9 @@ int run_plan(int argc, char** argv) {
   const std::string out = args.text("out", "");
   const std::string save = args.text("save-roadmap", "");
   const std::string load = args.text("load-roadmap", "");
+  const std::string picture = args.text("picture", "");
   require_writable_file("out", out);
+  require_writable_file("picture", picture);
   require_writable_file("save-roadmap", save);
   if (!load.empty() && !std::filesystem::is_regular_file(load))
     throw UsageError("--load-roadmap " + load + ": no such file");
@@ -123,6 +126,7 @@ int run_plan(int argc, char** argv) {
     gplanner::write_path_file(out, scene, result, gplanner::strategy_name(strategy),
                               checker->backend());
   }
+  if (result.solved && !picture.empty()) gplanner::write_path_picture(picture, scene, result.path);
 
   const gplanner::PlanTimes& t = result.times;
   const int width = scene.space.width();
@@ -148,6 +152,7 @@ int run_plan(int argc, char** argv) {
             << t.search << ", edge checks " << t.edge_checks << ", shortcutting "
             << t.shortcutting << "\n";
   if (result.solved && !out.empty()) std::cout << "wrote       " << out << "\n";
+  if (result.solved && !picture.empty()) std::cout << "wrote       " << picture << " (picture)\n";
   if (!save.empty()) std::cout << "wrote       " << save << " (roadmap)\n";
   if (args.flag("json")) {
     std::cout << std::setprecision(6) << "{\"scene\":" << json_text(scene_file)

@@ -7,6 +7,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <regex>
 #include <string>
 #include <vector>
@@ -94,6 +96,29 @@ TEST(GplanPlan, NoPathWithinTheLimitExitsFourAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+TEST(GplanPlan, PictureShowsObstaclesRobotAndPath) {
+  ScratchFolder scratch;
+  const std::string svg = scratch.path() + "/path.svg";
+  const CommandResult run = run_gplan("plan '" + scene_path("pr2_base_arm.yaml") +
+                                      "' --backend cpu --picture '" + svg + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::ifstream in(svg);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.rfind("<svg", 0), 0u);
+  EXPECT_NE(text.find("</svg>"), std::string::npos);
+  std::size_t polygons = 0;
+  for (std::size_t at = text.find("<polygon"); at != std::string::npos;
+       at = text.find("<polygon", at + 1)) {
+    ++polygons;
+  }
+  const Scene scene = load_scene(scene_path("pr2_base_arm.yaml"));
+  // Every obstacle triangle but the floor's, and the robot's links at the waypoints.
+  EXPECT_GT(polygons, scene.obstacle_triangle_count() / 2);
+  EXPECT_NE(text.find("#2a2"), std::string::npos);  // the start pose
+  EXPECT_NE(text.find("#d22"), std::string::npos);  // the goal pose
+  EXPECT_NE(text.find("<polyline"), std::string::npos);
+}
+
 TEST(GplanPlan, UsageErrorsNameTheOption) {
   const std::string scene = "'" + scene_path("piano.yaml") + "'";
   for (const auto& [arguments, option] : std::vector<std::pair<std::string, std::string>>{
@@ -104,6 +129,7 @@ TEST(GplanPlan, UsageErrorsNameTheOption) {
            {"--milestones 0", "--milestones"},
            {"--seed x", "--seed"},
            {"--out /no/such/folder/p.yaml", "--out"},
+           {"--picture /no/such/folder/p.svg", "--picture"},
            {"--load-roadmap /no/such/file", "--load-roadmap"},
            {"--bogus 1", "--bogus"}}) {
     const CommandResult run = run_gplan("plan " + scene + " " + arguments);

@@ -5,6 +5,8 @@
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/base/spaces/SO2StateSpace.h>
 
+#include <cmath>
+
 #include "gplanner/planner/scene.h"
 
 namespace gplanner::ompl_adapters {
@@ -118,11 +120,15 @@ void row_to_state(const Scene& scene, const float* row, ob::State* state) {
   if (space.base == BaseType::kFloating) {
     auto* s = base->as<ob::SE3StateSpace::StateType>();
     s->setXYZ(row[0], row[1], row[2]);
+    // Normalised in double: OMPL holds quaternions to unit length within 1e-9, tighter
+    // than float rows can.
     ob::SO3StateSpace::StateType& r = s->rotation();
-    r.w = row[3];
-    r.x = row[4];
-    r.y = row[5];
-    r.z = row[6];
+    const double w = row[3], x = row[4], y = row[5], z = row[6];
+    const double norm = std::sqrt(w * w + x * x + y * y + z * z);
+    r.w = w / norm;
+    r.x = x / norm;
+    r.y = y / norm;
+    r.z = z / norm;
   } else if (space.base == BaseType::kPlanar) {
     auto* s = base->as<ob::SE2StateSpace::StateType>();
     s->setXY(row[0], row[1]);

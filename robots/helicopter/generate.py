@@ -15,6 +15,7 @@ bounding box.
 
 import math
 import os
+import random
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -289,15 +290,19 @@ def helicopter_parts():
 # than the helicopter's radius); the only opening is a slot between two towers,
 # GAP_Y0..GAP_Y1, crossed by a low skybridge whose underside is SKY_Z0 above the
 # ground. The bounds cap the helicopter's centre at BOUNDS_MAX[2], less than SKY_Z1 plus
-# the helicopter's smallest downward reach (~2.0 m, see check.py), so flying over the
-# skybridge is impossible: it has to pass under it.
+# the helicopter's smallest reach from its centre in any direction (~1.8 m, see
+# check.py), so flying over the skybridge is impossible: it has to pass under it.
+# The slot is narrower than the level helicopter at some yaws (13.4 m at most) and
+# lower than the helicopter on its side (7.95 m): about a tenth of all rotations fit
+# its cross-section (slot_rotation_fraction), few enough that the passage is narrow,
+# enough that lazy PRM with uniform sampling finds it within a few rounds.
 
 WALL_X0, WALL_X1 = -9.0, 9.0
-GAP_Y0, GAP_Y1 = 16.0, 24.8            # 8.8 m wide slot
+GAP_Y0, GAP_Y1 = 14.0, 26.0            # 12.0 m wide slot
 SKY_X0, SKY_X1 = -3.0, 3.0             # skybridge, 6 m long in x
-SKY_Z0, SKY_Z1 = 7.0, 10.5             # underside 7.0 m above the ground
+SKY_Z0, SKY_Z1 = 7.5, 11.0             # underside 7.5 m above the ground
 BOUNDS_MIN = [-62.0, -44.0, 1.0]
-BOUNDS_MAX = [62.0, 44.0, 11.5]
+BOUNDS_MAX = [62.0, 44.0, 12.0]
 START = ((-50.0, -22.0, 6.0), (1.0, 0.0, 0.0, 0.0))
 GOAL_YAW = math.radians(90.0)
 GOAL = ((49.0, -24.0, 7.0), (math.cos(GOAL_YAW / 2), 0.0, 0.0, math.sin(GOAL_YAW / 2)))
@@ -358,7 +363,7 @@ def city_parts():
 
     # ---- the wall of high-rises (x in [WALL_X0, WALL_X1]) ---------------------------
     X0, X1 = WALL_X0, WALL_X1
-    # South of the slot: y from -66 to 16, split by 1.0 m service alleys (far narrower
+    # South of the slot: y from -66 to GAP_Y0, split by 1.0 m service alleys (far narrower
     # than the helicopter's smallest width). Set-backs start above 16 m, higher than
     # the bounds' ceiling.
     wall_south = [(-66.0, -41.0, 42.0, 2), (-40.0, -19.0, 30.0, 1), (-18.0, -2.0, 54.0, 2),
@@ -489,22 +494,66 @@ def level_width(vertices, yaw):
 
 def level_yaw_window(vertices, width, step_deg=0.1):
     """(Minimum level width, largest yaw offset from heading +x such that the level
-    helicopter stays narrower than `width` for every yaw within it, in degrees)."""
+    helicopter stays narrower than `width` for every yaw within it, in degrees; 180
+    when it fits at every yaw)."""
     wmin = min(level_width(vertices, math.radians(d * step_deg))
                for d in range(int(round(90 / step_deg)) + 1))
     k = 0
-    while all(level_width(vertices, sgn * math.radians((k + 1) * step_deg)) < width
-              for sgn in (1, -1)):
+    while k * step_deg < 180 and all(
+            level_width(vertices, sgn * math.radians((k + 1) * step_deg)) < width
+            for sgn in (1, -1)):
         k += 1
     return wmin, k * step_deg
+
+
+def level_width_max(vertices, step_deg=0.1):
+    """Largest extent in y of the level helicopter over all yaws."""
+    return max(level_width(vertices, math.radians(d * step_deg))
+               for d in range(int(round(180 / step_deg))))
+
+
+def slot_rotation_fraction(vertices, width, height, samples=3000, seed=7):
+    """Fraction of uniformly random rotations (Shoemake's method, a fixed seed) under
+    which the helicopter's extents in y and z are less than width and height: how much
+    of SO(3) fits the slot's cross-section."""
+    rng = random.Random(seed)
+    U = sorted({tuple(round(x, 4) for x in v) for v in vertices})
+    fit = 0
+    for _ in range(samples):
+        u1, u2, u3 = rng.random(), rng.random(), rng.random()
+        x = math.sqrt(1 - u1) * math.sin(2 * math.pi * u2)
+        y = math.sqrt(1 - u1) * math.cos(2 * math.pi * u2)
+        z = math.sqrt(u1) * math.sin(2 * math.pi * u3)
+        w = math.sqrt(u1) * math.cos(2 * math.pi * u3)
+        r1 = (2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x))
+        r2 = (2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y))
+        ys = [r1[0] * v[0] + r1[1] * v[1] + r1[2] * v[2] for v in U]
+        if max(ys) - min(ys) >= width:
+            continue
+        zs = [r2[0] * v[0] + r2[1] * v[1] + r2[2] * v[2] for v in U]
+        if max(zs) - min(zs) < height:
+            fit += 1
+    return fit / samples
+
+
+def rotation_weight(vertices):
+    """The metric's weight per radian of rotation: the helicopter's radius (the largest
+    distance of a vertex from the origin, rounded up to 0.1 m), the farthest any of its
+    points moves per radian."""
+    rmax = max(math.sqrt(sum(x * x for x in v)) for v in vertices)
+    return math.ceil(rmax * 10 - 1e-9) / 10
 
 
 def write_yaml(lo, hi, heli_vertices):
     size = [hi[i] - lo[i] for i in range(3)]
     width = GAP_Y1 - GAP_Y0
     wmin, window = level_yaw_window(heli_vertices, width)
-    print("level: min width %.3f m; yaw window +-%.1f deg for the %.2f m slot"
-          % (wmin, window, width))
+    wmax = level_width_max(heli_vertices)
+    frac = slot_rotation_fraction(heli_vertices, width, SKY_Z0)
+    rot_w = rotation_weight(heli_vertices)
+    print("level: width %.3f..%.3f m; yaw window +-%.1f deg for the %.2f m slot; "
+          "%.1f%% of rotations fit the %.2f x %.2f m cross-section; rotation weight %.1f"
+          % (wmin, wmax, window, width, 100 * frac, width, SKY_Z0, rot_w))
     text = """name: helicopter
 description: >
   A helicopter (rigid, 11.0 m four-blade main rotor, %.2f x %.2f x %.2f m overall,
@@ -516,11 +565,11 @@ description: >
 narrowest_passage: >
   The slot under the skybridge: %.2f m wide (y %.1f..%.1f) and %.2f m high (ground to
   the skybridge underside), %.1f m long (the skybridge; the slot itself is %.1f m long).
-  Level, the helicopter's four-blade rotor (11.0 m diameter) is at least %.2f m wide
-  (blades at 45 deg to the flight direction), so it passes level only within about
-  +-%.0f deg of yaw around heading east (or west); banking narrows the rotor but makes
-  the helicopter taller (%.2f m level, %.2f m on its side), so only about 2%% of all
-  rotations fit the slot's %.1f x %.1f m cross-section.
+  Level, the helicopter's four-blade rotor (11.0 m diameter) and tail make it %.2f to
+  %.2f m wide depending on yaw, so it passes level only within about +-%.0f deg of yaw
+  around heading east (or west); banking narrows it but makes it taller (%.2f m level,
+  %.2f m on its side, more than the slot is high), so only about %.0f%% of all rotations
+  fit the slot's %.1f x %.1f m cross-section.
 
 robot:
   mesh: ../robots/helicopter/helicopter.dae
@@ -536,10 +585,14 @@ start:
   base: {xyz: %s, quat_wxyz: %s}
 goal:
   base: {xyz: %s, quat_wxyz: %s}
+
+planner:
+  # per radian of rotation: the helicopter's radius, the farthest its points move
+  distance_weights: {rotation: %.1f}
 """ % (size[0], size[1], size[2], width, GAP_Y0, GAP_Y1, SKY_Z0, SKY_X1 - SKY_X0,
-       WALL_X1 - WALL_X0, wmin, window, size[2], wmin, width, SKY_Z0,
+       WALL_X1 - WALL_X0, wmin, wmax, window, size[2], size[1], 100 * frac, width, SKY_Z0,
        fmt(BOUNDS_MIN), fmt(BOUNDS_MAX),
-       fmt(START[0]), fmt(START[1]), fmt(GOAL[0]), fmt(GOAL[1]))
+       fmt(START[0]), fmt(START[1]), fmt(GOAL[0]), fmt(GOAL[1]), rot_w)
     with open(YAML_PATH, "w") as f:
         f.write(text)
 

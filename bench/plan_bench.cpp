@@ -1,0 +1,167 @@
+// Plan times on one scene: our lazy PRM and PRM (any backend, GPU k-NN with the gpu
+// backend) against OMPL's LazyPRM, PRM and RRTConnect as OMPL users run them: one
+// planning thread, OMPL's default settings, our FCL backend on that thread as the state
+// validity checker, OMPL's DiscreteMotionValidator at the same resolution (the scene's
+// edge_resolution of the same largest extent). Every run is a fresh planner with its own
+// seed; prints one JSON line per run.
+//
+// usage: gplanner_plan_bench SCENE [--runs N] [--time-limit S] [--planners a,b,...]
+//                            [--backend B] [--slow S] [--slow-runs M]
+//   planners: ours-lazyprm, ours-prm, ompl-lazyprm, ompl-prm, ompl-rrtconnect (default all)
+//   --backend B: the backend of ours (default gpu)
+//   a planner whose first run takes more than --slow seconds (default 30) gets only
+//   --slow-runs runs (default 3)
+
+#include <ompl/base/ScopedState.h>
+#include <ompl/geometric/SimpleSetup.h>
+#include <ompl/geometric/planners/prm/LazyPRM.h>
+#include <ompl/geometric/planners/prm/PRM.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gplanner/planner/checker_factory.h"
+#include "gplanner/planner/fcl_checker.h"
+#include "gplanner/planner/neighbor_finder.h"
+#include "gplanner/planner/ompl/state_space.h"
+#include "gplanner/planner/ompl/state_validity_checker.h"
+#include "gplanner/planner/roadmap_planner.h"
+#include "gplanner/planner/scene.h"
+#include "gplanner/planner/scene_metric.h"
+
+namespace {
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+struct Run {
+  std::string planner, checker;
+  int seed = 0;
+  bool solved = false;
+  double seconds = 0, length = 0;
+  std::size_t checks = 0;
+};
+
+void print(const gplanner::Scene& scene, const Run& run) {
+  std::cout << std::setprecision(6) << "{\"scene\":\"" << scene.name << "\",\"planner\":\""
+            << run.planner << "\",\"checker\":\"" << run.checker << "\",\"seed\":" << run.seed
+            << ",\"solved\":" << (run.solved ? "true" : "false") << ",\"seconds\":" << run.seconds
+            << ",\"length\":" << run.length << ",\"state_checks\":" << run.checks << "}"
+            << std::endl;
+}
+
+Run run_ompl(const gplanner::Scene& scene, const std::string& name, double time_limit, int seed) {
+  gplanner::FclChecker fcl(scene, /*threads=*/1);
+  og::SimpleSetup setup(gplanner::ompl_adapters::make_state_space(scene));
+  const ob::SpaceInformationPtr si = setup.getSpaceInformation();
+  auto checker =
+      std::make_shared<gplanner::ompl_adapters::StateValidityChecker>(si, scene, &fcl);
+  setup.setStateValidityChecker(checker);
+  ob::ScopedState<> start(si), goal(si);
+  gplanner::ompl_adapters::row_to_state(scene, scene.start.data(), start.get());
+  gplanner::ompl_adapters::row_to_state(scene, scene.goal.data(), goal.get());
+  setup.setStartAndGoalStates(start, goal);
+  if (name == "ompl-lazyprm") {
+    setup.setPlanner(std::make_shared<og::LazyPRM>(si));
+  } else if (name == "ompl-prm") {
+    setup.setPlanner(std::make_shared<og::PRM>(si));
+  } else {
+    setup.setPlanner(std::make_shared<og::RRTConnect>(si));
+  }
+  setup.setup();
+  Run run{name, "fcl (1 thread)", seed};
+  const ob::PlannerStatus status = setup.solve(time_limit);
+  run.seconds = setup.getLastPlanComputationTime();
+  run.solved = status == ob::PlannerStatus::EXACT_SOLUTION;
+  if (run.solved) run.length = setup.getSolutionPath().length();
+  run.checks = checker->checks();
+  return run;
+}
+
+Run run_ours(const gplanner::Scene& scene, const std::string& name, double time_limit, int seed,
+             gplanner::CollisionChecker* checker, gplanner::NeighborFinder* neighbors) {
+  gplanner::PlanOptions options = gplanner::plan_options(scene);
+  options.seed = seed;
+  options.time_limit_s = time_limit;
+  const auto strategy =
+      name == "ours-prm" ? gplanner::RoadmapStrategy::kPrm : gplanner::RoadmapStrategy::kLazyPrm;
+  gplanner::RoadmapPlanner planner(scene, checker, neighbors, strategy, options);
+  const gplanner::PlanResult result = planner.solve(scene.start.data(), scene.goal.data());
+  Run run{name, checker->backend() + " (k-NN on the " + neighbors->device() + ")", seed};
+  run.solved = result.solved;
+  run.seconds = result.times.total;
+  run.length = result.length;
+  run.checks = result.states_checked + result.samples_checked;
+  return run;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << "usage: gplanner_plan_bench SCENE [--runs N] [--time-limit S] [--planners "
+                 "a,b] [--backend B]\n";
+    return 2;
+  }
+  const std::string scene_file = argv[1];
+  int runs = 10;
+  double time_limit = 60;
+  std::string backend = "gpu";
+  double slow = 30;
+  int slow_runs = 3;
+  std::vector<std::string> planners = {"ours-lazyprm", "ours-prm", "ompl-lazyprm", "ompl-prm",
+                                       "ompl-rrtconnect"};
+  for (int i = 2; i + 1 < argc; i += 2) {
+    const std::string option = argv[i], value = argv[i + 1];
+    if (option == "--runs") {
+      runs = std::atoi(value.c_str());
+    } else if (option == "--time-limit") {
+      time_limit = std::atof(value.c_str());
+    } else if (option == "--slow") {
+      slow = std::atof(value.c_str());
+    } else if (option == "--slow-runs") {
+      slow_runs = std::atoi(value.c_str());
+    } else if (option == "--backend") {
+      backend = value;
+    } else if (option == "--planners") {
+      planners.clear();
+      std::stringstream list(value);
+      for (std::string p; std::getline(list, p, ',');) planners.push_back(p);
+    } else {
+      std::cerr << "unknown option " << option << "\n";
+      return 2;
+    }
+  }
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  ompl::RNG::setSeed(1);
+  try {
+    const gplanner::Scene scene = gplanner::load_scene(scene_file);
+    std::unique_ptr<gplanner::CollisionChecker> checker =
+        gplanner::make_collision_checker(scene, backend);
+    std::unique_ptr<gplanner::NeighborFinder> neighbors = gplanner::make_neighbor_finder(
+        gplanner::make_metric(scene.space, scene.planner), checker->backend());
+    for (const std::string& planner : planners) {
+      int planned = runs;
+      for (int seed = 1; seed <= planned; ++seed) {
+        const Run run = planner.rfind("ours-", 0) == 0
+                            ? run_ours(scene, planner, time_limit, seed, checker.get(),
+                                       neighbors.get())
+                            : run_ompl(scene, planner, time_limit, seed);
+        print(scene, run);
+        if (seed == 1 && run.seconds > slow) planned = std::min(planned, slow_runs);
+      }
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "gplanner_plan_bench: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -10,7 +10,8 @@
 //   planners: ours-lazyprm, ours-prm, ompl-lazyprm, ompl-prm, ompl-rrtconnect (default all)
 //   --backend B: the backend of ours (default gpu)
 //   a planner whose first run takes more than --slow seconds (default 30) gets only
-//   --slow-runs runs (default 3)
+//   --slow-runs runs (default 3); --budget S: no new run of a planner starts after it
+//   has taken S seconds in all (default: no bound)
 
 #include <ompl/base/ScopedState.h>
 #include <ompl/geometric/SimpleSetup.h>
@@ -117,6 +118,7 @@ int main(int argc, char** argv) {
   std::string backend = "gpu";
   double slow = 30;
   int slow_runs = 3;
+  double budget = 1e30;
   std::vector<std::string> planners = {"ours-lazyprm", "ours-prm", "ompl-lazyprm", "ompl-prm",
                                        "ompl-rrtconnect"};
   for (int i = 2; i + 1 < argc; i += 2) {
@@ -127,6 +129,8 @@ int main(int argc, char** argv) {
       time_limit = std::atof(value.c_str());
     } else if (option == "--slow") {
       slow = std::atof(value.c_str());
+    } else if (option == "--budget") {
+      budget = std::atof(value.c_str());
     } else if (option == "--slow-runs") {
       slow_runs = std::atoi(value.c_str());
     } else if (option == "--backend") {
@@ -150,12 +154,14 @@ int main(int argc, char** argv) {
         gplanner::make_metric(scene.space, scene.planner), checker->backend());
     for (const std::string& planner : planners) {
       int planned = runs;
-      for (int seed = 1; seed <= planned; ++seed) {
+      double spent = 0;
+      for (int seed = 1; seed <= planned && spent < budget; ++seed) {
         const Run run = planner.rfind("ours-", 0) == 0
                             ? run_ours(scene, planner, time_limit, seed, checker.get(),
                                        neighbors.get())
                             : run_ompl(scene, planner, time_limit, seed);
         print(scene, run);
+        spent += run.seconds;
         if (seed == 1 && run.seconds > slow) planned = std::min(planned, slow_runs);
       }
     }

@@ -52,7 +52,12 @@ std::string ScratchFolder::write(const std::string& name, const std::string& tex
 }
 
 CommandResult run_gplan(const std::string& arguments) {
-  const std::string command = std::string("'") + GPLAN_EXECUTABLE + "' " + arguments + " 2>&1";
+  // $GPLANNER_GPLAN: how to start gplan where the build's path does not hold it (the
+  // GPU machine: ".gpu/run .gpu/bin/gplan").
+  const char* custom = std::getenv("GPLANNER_GPLAN");
+  const std::string program =
+      custom && *custom ? std::string(custom) : "'" + std::string(GPLAN_EXECUTABLE) + "'";
+  const std::string command = program + " " + arguments + " 2>&1";
   CommandResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return result;

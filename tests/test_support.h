@@ -32,7 +32,8 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
-// Runs the gplan program built beside the tests with `arguments` (shell syntax).
+// Runs the gplan program built beside the tests with `arguments` (shell syntax); where
+// $GPLANNER_GPLAN is set, that command line instead (e.g. ".gpu/run .gpu/bin/gplan").
 CommandResult run_gplan(const std::string& arguments);
 
 }  // namespace gplanner::testing

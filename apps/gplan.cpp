@@ -4,10 +4,10 @@
 #include <string>
 
 #include "check_command.h"
-#include "plan_command.h"
 #include "command_line.h"
 #include "gplanner/collision_gpu/gpu_device.h"
 #include "gplanner/planner/input_error.h"
+#include "plan_command.h"
 
 namespace {
 

@@ -134,12 +134,10 @@ int run_plan(int argc, char** argv) {
   std::cout << std::fixed << "scene       " << scene_file << " (" << scene.name << "), "
             << scene.space.dof() << " DOF\n"
             << "planner     " << gplanner::strategy_name(strategy) << ", seed " << options.seed
-            << ", " << checker->backend() << " backend, k-NN on the " << neighbors->device()
-            << "\n"
-            << "roadmap     " << result.milestones << " milestones, " << result.edges
-            << " edges (" << result.edges_checked << " checked, " << result.samples_checked
-            << " edge samples), " << result.states_checked << " states checked, "
-            << result.rounds << " round(s)\n";
+            << ", " << checker->backend() << " backend, k-NN on the " << neighbors->device() << "\n"
+            << "roadmap     " << result.milestones << " milestones, " << result.edges << " edges ("
+            << result.edges_checked << " checked, " << result.samples_checked << " edge samples), "
+            << result.states_checked << " states checked, " << result.rounds << " round(s)\n";
   if (result.solved) {
     std::cout << "path        " << waypoints << " waypoints, length " << std::setprecision(3)
               << result.length << " (" << result.length_before_shortcut
@@ -148,9 +146,8 @@ int run_plan(int argc, char** argv) {
     std::cout << "path        none found (" << result.stop_reason << ")\n";
   }
   std::cout << std::setprecision(4) << "time        " << t.total << " s: sampling " << t.sampling
-            << ", state checks " << t.state_checks << ", k-NN " << t.knn << ", search "
-            << t.search << ", edge checks " << t.edge_checks << ", shortcutting "
-            << t.shortcutting << "\n";
+            << ", state checks " << t.state_checks << ", k-NN " << t.knn << ", search " << t.search
+            << ", edge checks " << t.edge_checks << ", shortcutting " << t.shortcutting << "\n";
   if (result.solved && !out.empty()) std::cout << "wrote       " << out << "\n";
   if (result.solved && !picture.empty()) std::cout << "wrote       " << picture << " (picture)\n";
   if (!save.empty()) std::cout << "wrote       " << save << " (roadmap)\n";
@@ -169,8 +166,8 @@ int run_plan(int argc, char** argv) {
               << ",\"states_checked\":" << result.states_checked
               << ",\"samples_checked\":" << result.samples_checked
               << ",\"rounds\":" << result.rounds << ",\"seconds\":" << t.total
-              << ",\"times\":{\"sampling\":" << t.sampling << ",\"state_checks\":"
-              << t.state_checks << ",\"knn\":" << t.knn << ",\"search\":" << t.search
+              << ",\"times\":{\"sampling\":" << t.sampling << ",\"state_checks\":" << t.state_checks
+              << ",\"knn\":" << t.knn << ",\"search\":" << t.search
               << ",\"edge_checks\":" << t.edge_checks << ",\"shortcutting\":" << t.shortcutting
               << "}}\n";
   }

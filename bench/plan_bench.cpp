@@ -63,8 +63,7 @@ Run run_ompl(const gplanner::Scene& scene, const std::string& name, double time_
   gplanner::FclChecker fcl(scene, /*threads=*/1);
   og::SimpleSetup setup(gplanner::ompl_adapters::make_state_space(scene));
   const ob::SpaceInformationPtr si = setup.getSpaceInformation();
-  auto checker =
-      std::make_shared<gplanner::ompl_adapters::StateValidityChecker>(si, scene, &fcl);
+  auto checker = std::make_shared<gplanner::ompl_adapters::StateValidityChecker>(si, scene, &fcl);
   setup.setStateValidityChecker(checker);
   ob::ScopedState<> start(si), goal(si);
   gplanner::ompl_adapters::row_to_state(scene, scene.start.data(), start.get());
@@ -156,10 +155,9 @@ int main(int argc, char** argv) {
       int planned = runs;
       double spent = 0;
       for (int seed = 1; seed <= planned && spent < budget; ++seed) {
-        const Run run = planner.rfind("ours-", 0) == 0
-                            ? run_ours(scene, planner, time_limit, seed, checker.get(),
-                                       neighbors.get())
-                            : run_ompl(scene, planner, time_limit, seed);
+        const Run run = planner.rfind("ours-", 0) == 0 ? run_ours(scene, planner, time_limit, seed,
+                                                                  checker.get(), neighbors.get())
+                                                       : run_ompl(scene, planner, time_limit, seed);
         print(scene, run);
         spent += run.seconds;
         if (seed == 1 && run.seconds > slow) planned = std::min(planned, slow_runs);

@@ -38,7 +38,6 @@ LocalPlanner::LocalPlanner(const Scene& scene, CollisionChecker* checker,
       checker_(checker),
       options_(options),
       metric_(make_metric(scene.space, scene.planner)),
-      segment_length_(options.resolution_fraction * space_extent(scene.space, metric_)),
       bound_(scene.robot, scene.space) {
   if (!(options.resolution_fraction > 0) && !(options.max_displacement > 0))
     throw std::invalid_argument("local planner: the resolution must be positive");
@@ -47,9 +46,40 @@ LocalPlanner::LocalPlanner(const Scene& scene, CollisionChecker* checker,
 int LocalPlanner::segments(const float* a, const float* b) const {
   const double length = options_.max_displacement > 0
                             ? bound_.displacement(a, b) / options_.max_displacement
-                            : distance(metric_, a, b) / segment_length_;
+                            : component_segments(a, b);
   if (!(length < 1e9)) throw std::invalid_argument("local planner: motion of unbounded length");
   return std::max(1, static_cast<int>(std::ceil(length)));
+}
+
+double LocalPlanner::component_segments(const float* a, const float* b) const {
+  // As OMPL counts valid segments in a compound space: each component (base position,
+  // base rotation, each joint) in steps of the fraction of its own extent, the largest
+  // count winning. The rotation's extent is a half turn.
+  const ConfigurationSpace& space = scene_.space;
+  const double f = options_.resolution_fraction;
+  constexpr double kPi = 3.14159265358979323846;
+  double count = 0;
+  if (space.base == BaseType::kFloating) {
+    const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+    const double extent = (space.base_max - space.base_min).norm();
+    if (extent > 0) count = std::sqrt(dx * dx + dy * dy + dz * dz) / (f * extent);
+    count = std::max<double>(count, quaternion_angle(a + 3, b + 3) / (f * kPi));
+  } else if (space.base == BaseType::kPlanar) {
+    const double dx = a[0] - b[0], dy = a[1] - b[1];
+    const double extent = (space.base_max - space.base_min).head<2>().norm();
+    if (extent > 0) count = std::sqrt(dx * dx + dy * dy) / (f * extent);
+    count = std::max<double>(count, angle_difference(a[2], b[2]) / (f * kPi));
+  }
+  const int offset = space.base_width();
+  for (std::size_t j = 0; j < space.planned_joints.size(); ++j) {
+    const float x = a[offset + j], y = b[offset + j];
+    if (space.continuous[j]) {
+      count = std::max<double>(count, angle_difference(x, y) / (f * kPi));
+    } else if (space.upper[j] > space.lower[j]) {
+      count = std::max<double>(count, std::fabs(x - y) / (f * (space.upper[j] - space.lower[j])));
+    }
+  }
+  return count;
 }
 
 void LocalPlanner::check_motions(const float* from, const float* to, std::size_t count,

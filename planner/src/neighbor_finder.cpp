@@ -73,7 +73,8 @@ std::unique_ptr<NeighborFinder> make_neighbor_finder(const ConfigurationMetric& 
                                                      std::string* notice) {
   if (backend == "gpu") {
     std::string reason;
-    if (gpu_nearest_neighbors_available(&reason)) return std::make_unique<GpuNeighborFinder>(metric);
+    if (gpu_nearest_neighbors_available(&reason))
+      return std::make_unique<GpuNeighborFinder>(metric);
     if (notice) *notice = "k-NN runs on the CPU: " + reason;
   }
   return std::make_unique<CpuNeighborFinder>(metric);

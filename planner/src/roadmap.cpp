@@ -143,9 +143,9 @@ std::uint64_t scene_fingerprint(const Scene& scene) {
     h.add(static_cast<bool>(space.continuous[j]));
   }
   for (const double v : space.fixed_positions) h.add(v);
-  for (const char* key : {"distance_weights.position", "distance_weights.rotation",
-                          "distance_weights.joint", "delta_fraction", "edge_resolution",
-                          "max_displacement"}) {
+  for (const char* key :
+       {"distance_weights.position", "distance_weights.rotation", "distance_weights.joint",
+        "delta_fraction", "edge_resolution", "max_displacement"}) {
     h.add(std::string(key));
     h.add(scene.planner.number(key));
   }
@@ -195,10 +195,12 @@ Roadmap load_roadmap(const Scene& scene, const std::string& path) {
   reader.take(skip, magic);
   const std::uint64_t fingerprint = reader.get<std::uint64_t>();
   if (stored != checksum.value())
-    throw std::runtime_error(path + ": roadmap file is damaged (checksum mismatch); build it again");
+    throw std::runtime_error(path +
+                             ": roadmap file is damaged (checksum mismatch); build it again");
   if (fingerprint != scene_fingerprint(scene)) {
     throw std::runtime_error(path + ": roadmap belongs to another scene, or to other settings of " +
-                             scene.file + " (robot, obstacles, bounds, weights, tolerance or "
+                             scene.file +
+                             " (robot, obstacles, bounds, weights, tolerance or "
                              "resolution differ); build it again for this scene");
   }
   const std::int32_t width = reader.get<std::int32_t>();

@@ -562,8 +562,8 @@ Scene load_scene(const std::string& path) {
     };
     for (const Range& r : ranges) {
       const double v = scene.planner.number(r.key);
-      const bool ok = (r.low_open ? v > r.low : v >= r.low) && v <= r.high &&
-                      (!r.whole || v == std::floor(v));
+      const bool ok =
+          (r.low_open ? v > r.low : v >= r.low) && v <= r.high && (!r.whole || v == std::floor(v));
       if (!ok) {
         const std::string key = r.key;
         const std::size_t dot = key.find('.');

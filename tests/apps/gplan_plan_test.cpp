@@ -88,9 +88,9 @@ GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(GplanPlansOnGpu);
 TEST(GplanPlan, NoPathWithinTheLimitExitsFourAndWritesNothing) {
   ScratchFolder scratch;
   const std::string out = scratch.path() + "/path.yaml";
-  const CommandResult run = run_gplan("plan '" + scene_path("piano.yaml") +
-                                      "' --backend cpu --milestones 20 --time-limit 0.001 --out '" +
-                                      out + "'");
+  const CommandResult run =
+      run_gplan("plan '" + scene_path("piano.yaml") +
+                "' --backend cpu --milestones 20 --time-limit 0.001 --out '" + out + "'");
   EXPECT_EQ(run.exit_code, 4) << run.output;
   EXPECT_NE(run.output.find("no path found within"), std::string::npos) << run.output;
   EXPECT_FALSE(std::filesystem::exists(out));
@@ -145,12 +145,14 @@ TEST(GplanPlan, RoadmapsAreSavedLoadedAndRefusedForOtherScenes) {
   const std::string scene = "'" + scene_path("pr2_base_arm.yaml") + "'";
   const CommandResult first = run_gplan("plan " + scene +
                                         " --backend cpu --planner prm --milestones 250 "
-                                        "--save-roadmap '" + roadmap + "'");
+                                        "--save-roadmap '" +
+                                        roadmap + "'");
   ASSERT_EQ(first.exit_code, 0) << first.output;
   ASSERT_TRUE(std::filesystem::exists(roadmap));
   const CommandResult again = run_gplan("plan " + scene +
                                         " --backend cpu --planner prm --milestones 250 --json "
-                                        "--load-roadmap '" + roadmap + "'");
+                                        "--load-roadmap '" +
+                                        roadmap + "'");
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_NE(again.output.find("\"states_checked\":0,"), std::string::npos) << again.output;
   const CommandResult other = run_gplan("plan '" + scene_path("pr2_reach.yaml") +

@@ -86,7 +86,8 @@ GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(GpuMatchesCpu);
 // The parameterised GPU cases above exist only if the scenes are found: run from the
 // project root or set GPLANNER_ROOT.
 TEST(GpuChecker, FindsTheShippedScenes) {
-  EXPECT_GE(testing::shipped_scene_files().size(), 7u) << "scenes/ not found under " << testing::project_root();
+  EXPECT_GE(testing::shipped_scene_files().size(), 7u)
+      << "scenes/ not found under " << testing::project_root();
 }
 
 TEST(GpuChecker, ChunksBatchesOverTheMemoryCap) {

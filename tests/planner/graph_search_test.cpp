@@ -50,8 +50,7 @@ TEST(GraphSearch, FindsTheShortestPathOverUsableEdges) {
     std::uniform_int_distribution<int> state(0, 2);
     for (int e = 0; e < 800; ++e) {
       const std::uint32_t a = pick(rng), b = pick(rng);
-      roadmap.add_edge(a, b,
-                       configuration_distance(metric, roadmap.vertex(a), roadmap.vertex(b)),
+      roadmap.add_edge(a, b, configuration_distance(metric, roadmap.vertex(a), roadmap.vertex(b)),
                        static_cast<EdgeState>(state(rng)));
     }
     for (const bool valid_only : {false, true}) {

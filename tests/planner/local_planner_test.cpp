@@ -42,21 +42,27 @@ TEST(CoarseToFineOrder, VisitsEveryInteriorSampleOnceMidpointFirst) {
   EXPECT_EQ(std::vector<int>(eight.begin(), eight.begin() + 3), (std::vector<int>{4, 2, 6}));
 }
 
-TEST(LocalPlanner, SegmentsFollowTheResolutionOfTheLargestExtent) {
+TEST(LocalPlanner, SegmentsStepEveryComponentByOnePercentOfItsExtent) {
   const Scene scene = load("piano.yaml");
   CpuChecker checker(scene);
   LocalPlanner local(scene, &checker);
-  const ConfigurationMetric metric = make_metric(scene.space, scene.planner);
-  const double extent = space_extent(scene.space, metric);
-  EXPECT_NEAR(local.segment_length(), 0.01 * extent, 1e-9);
+  const double diagonal = (scene.space.base_max - scene.space.base_min).norm();
   const std::vector<float> q = testing::sample_configurations(scene, 200, 3);
   const int w = scene.space.width();
-  for (int i = 0; i + 1 < 200; i += 2) {
-    const double d = distance(metric, &q[i * w], &q[(i + 1) * w]);
-    EXPECT_EQ(local.segments(&q[i * w], &q[(i + 1) * w]),
-              std::max(1, static_cast<int>(std::ceil(d / local.segment_length()))));
-  }
+  const float* start = scene.start.data();
+  std::vector<float> moved(start, start + w);
+  // A translation only: 1% of the bounds' diagonal per segment.
+  moved[0] += static_cast<float>(0.2 * diagonal);
+  EXPECT_NEAR(local.segments(start, moved.data()), 20, 1);
+  // A rotation only, by 90 degrees about z: a half turn is 100 segments.
+  std::vector<float> turned(start, start + w);
+  const Eigen::Quaterniond r =
+      Eigen::Quaterniond(start[3], start[4], start[5], start[6]) *
+      Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  turned[3] = r.w(), turned[4] = r.x(), turned[5] = r.y(), turned[6] = r.z();
+  EXPECT_NEAR(local.segments(start, turned.data()), 50, 1);
   EXPECT_EQ(local.segments(&q[0], &q[0]), 1);
+  for (int i = 0; i + 1 < 200; i += 2) EXPECT_GE(local.segments(&q[i * w], &q[(i + 1) * w]), 1);
 }
 
 // The straight-line motion sampled at every interior point, one configuration at a time.

@@ -130,8 +130,7 @@ TEST(Roadmap, DamagedFilesAreRefusedNamingTheFile) {
 
   const std::string text = scratch.write("notes.txt", "hello\n");
   EXPECT_NE(load_error(scene, text).find("not a gplanner roadmap"), std::string::npos);
-  EXPECT_NE(load_error(scene, scratch.path() + "/missing").find("cannot open"),
-            std::string::npos);
+  EXPECT_NE(load_error(scene, scratch.path() + "/missing").find("cannot open"), std::string::npos);
 }
 
 TEST(Roadmap, FailedSaveKeepsTheOldFile) {

@@ -3,14 +3,15 @@
 // free, every motion sampled at a resolution and all samples of all motions checked in
 // a few large batches.
 //
-// Resolution: by default a motion is cut into segments no longer than 1% of the
-// space's largest extent under the planner's metric (OMPL's default for its
-// DiscreteMotionValidator, so that comparisons with OMPL are like for like); with
-// `max_displacement` set, into segments along which no robot point moves farther than
-// that (MotionBound). Samples are visited coarse to fine (the midpoint, then the
-// quarter points, ...), level by level across all motions: a motion found invalid
-// drops out before its finer samples are checked, and once the samples left are few
-// they all go in one batch.
+// Resolution: by default as OMPL's DiscreteMotionValidator samples a motion in the
+// equivalent compound state space (planner/ompl/state_space.h), so that comparisons
+// with OMPL are like for like: every component (base position, base rotation, each
+// joint) moves at most 1% of its own extent per segment (the base rotation's extent
+// being a half turn). With `max_displacement` set, instead, no robot point moves
+// farther than that per segment (MotionBound). Samples are visited coarse to fine (the midpoint,
+// then the quarter points, ...), level by level across all motions: a motion found invalid drops
+// out before its finer samples are checked, and once the samples left are few they all go in one
+// batch.
 
 #include <cstddef>
 #include <cstdint>
@@ -25,7 +26,7 @@ namespace gplanner {
 struct Scene;
 
 struct LocalPlannerOptions {
-  // Longest segment as a fraction of the space's largest extent.
+  // Longest segment of each component as a fraction of that component's extent.
   double resolution_fraction = 0.01;
   // When > 0: the largest robot-point motion between samples, in metres (overrides
   // resolution_fraction).
@@ -55,8 +56,7 @@ class LocalPlanner {
   // from, to: shape [count, width]; invalid: shape [count], set to 1 when some interior
   // sample of the motion collides, 0 otherwise. The endpoints are not checked: callers
   // check states in their own batches.
-  void check_motions(const float* from, const float* to, std::size_t count,
-                     std::uint8_t* invalid);
+  void check_motions(const float* from, const float* to, std::size_t count, std::uint8_t* invalid);
 
   // Every sample of the motion, in order from a (exclusive) to b (inclusive), in one
   // batch: the fraction of the way of the last valid sample before the first
@@ -66,14 +66,15 @@ class LocalPlanner {
   const MotionCheckStats& stats() const { return stats_; }
   void reset_stats() { stats_ = {}; }
   const ConfigurationMetric& metric() const { return metric_; }
-  double segment_length() const { return segment_length_; }
 
  private:
+  // Segments by the components' own resolutions, before rounding up.
+  double component_segments(const float* a, const float* b) const;
+
   const Scene& scene_;
   CollisionChecker* checker_;
   LocalPlannerOptions options_;
   ConfigurationMetric metric_;
-  double segment_length_;  // metric units (when max_displacement is 0)
   MotionBound bound_;
   MotionCheckStats stats_;
 };

@@ -48,6 +48,9 @@ class RoadmapPlanner {
     connected_ = 0;
   }
   const PlanOptions& options() const { return options_; }
+  // New settings for the next solve() (the roadmap stays; the local planner keeps the
+  // resolution it was made with).
+  void set_options(const PlanOptions& options) { options_ = options; }
   RoadmapStrategy strategy() const { return strategy_; }
 
  private:

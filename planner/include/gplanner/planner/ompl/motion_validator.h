@@ -1,0 +1,52 @@
+#pragma once
+// An OMPL motion validator backed by any of our collision backends: the straight-line
+// motion between two states (the end state included, the start assumed valid, as
+// OMPL's DiscreteMotionValidator does) sampled at the scene's edge resolution, all
+// samples of a motion in one batch. Keeps OMPL's valid and invalid motion counters;
+// calls from several threads are serialised. The batch extension checks many motions
+// in one call, level by level (LocalPlanner::check_motions).
+
+#include <ompl/base/MotionValidator.h>
+
+#include <cstdint>
+#include <mutex>
+#include <utility>
+#include <vector>
+
+#include "gplanner/planner/collision_checker.h"
+#include "gplanner/planner/local_planner.h"
+
+namespace gplanner {
+
+struct Scene;
+
+namespace ompl_adapters {
+
+class MotionValidator : public ompl::base::MotionValidator {
+ public:
+  // scene and checker must outlive this object; options: the resolution (the scene's
+  // edge_resolution and max_displacement by default).
+  MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
+                  CollisionChecker* checker);
+  MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
+                  CollisionChecker* checker, const LocalPlannerOptions& options);
+
+  bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
+  bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
+                   std::pair<ompl::base::State*, double>& lastValid) const override;
+
+  // valid[i] = 1 when the motion motions[i].first -> motions[i].second is valid; every
+  // motion's samples in a few large batches, the end states in one more.
+  void checkMotions(
+      const std::vector<std::pair<const ompl::base::State*, const ompl::base::State*>>& motions,
+      std::vector<std::uint8_t>* valid) const;
+
+ private:
+  const Scene& scene_;
+  CollisionChecker* checker_;
+  mutable std::mutex mutex_;
+  mutable LocalPlanner local_;
+};
+
+}  // namespace ompl_adapters
+}  // namespace gplanner

@@ -1,0 +1,80 @@
+#include "gplanner/planner/ompl/motion_validator.h"
+
+#include <ompl/base/SpaceInformation.h>
+
+#include "gplanner/planner/ompl/state_space.h"
+#include "gplanner/planner/roadmap_planner.h"
+#include "gplanner/planner/scene.h"
+
+namespace gplanner::ompl_adapters {
+
+MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
+                                 CollisionChecker* checker)
+    : MotionValidator(si, scene, checker, plan_options(scene).local) {}
+
+MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
+                                 CollisionChecker* checker, const LocalPlannerOptions& options)
+    : ompl::base::MotionValidator(si),
+      scene_(scene),
+      checker_(checker),
+      local_(scene, checker, options) {}
+
+bool MotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const {
+  std::pair<ompl::base::State*, double> unused{nullptr, 0.0};
+  return checkMotion(s1, s2, unused);
+}
+
+bool MotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
+                                  std::pair<ompl::base::State*, double>& lastValid) const {
+  const int width = scene_.space.width();
+  std::vector<float> a(width), b(width);
+  state_to_row(scene_, s1, a.data());
+  state_to_row(scene_, s2, b.data());
+  double fraction = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    // Beyond the bounds the end state is invalid; samples between two states within
+    // the (convex) bounds stay within them.
+    fraction = si_->satisfiesBounds(s2) ? local_.last_valid_fraction(a.data(), b.data()) : -1;
+    if (fraction == 1.0) {
+      ++valid_;
+      return true;
+    }
+    ++invalid_;
+  }
+  if (fraction < 0) {
+    // Only the end state is out of bounds: the last valid sample before it.
+    const int n = local_.segments(a.data(), b.data());
+    fraction = static_cast<double>(n - 1) / n;
+  }
+  lastValid.second = fraction;
+  if (lastValid.first) si_->getStateSpace()->interpolate(s1, s2, fraction, lastValid.first);
+  return false;
+}
+
+void MotionValidator::checkMotions(
+    const std::vector<std::pair<const ompl::base::State*, const ompl::base::State*>>& motions,
+    std::vector<std::uint8_t>* valid) const {
+  const std::size_t n = motions.size(), width = scene_.space.width();
+  std::vector<float> from(n * width), to(n * width);
+  for (std::size_t i = 0; i < n; ++i) {
+    state_to_row(scene_, motions[i].first, &from[i * width]);
+    state_to_row(scene_, motions[i].second, &to[i * width]);
+  }
+  std::vector<std::uint8_t> invalid(n, 0), end(n, 1);
+  std::lock_guard<std::mutex> lock(mutex_);
+  local_.check_motions(from.data(), to.data(), n, invalid.data());
+  checker_->check(to.data(), n, end.data());
+  valid->assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool ok = !invalid[i] && !end[i] && si_->satisfiesBounds(motions[i].second);
+    (*valid)[i] = ok ? 1 : 0;
+    if (ok) {
+      ++valid_;
+    } else {
+      ++invalid_;
+    }
+  }
+}
+
+}  // namespace gplanner::ompl_adapters

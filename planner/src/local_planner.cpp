@@ -82,7 +82,7 @@ double LocalPlanner::component_segments(const float* a, const float* b) const {
   return count;
 }
 
-void LocalPlanner::check_motions(const float* from, const float* to, std::size_t count,
+bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t count,
                                  std::uint8_t* invalid) {
   const ConfigurationSpace& space = scene_.space;
   const std::size_t width = space.width();
@@ -115,6 +115,7 @@ void LocalPlanner::check_motions(const float* from, const float* to, std::size_t
     if (picks.empty()) break;
     // Batches of at most max_batch_samples, so that memory stays bounded.
     for (std::size_t first = 0; first < picks.size(); first += options_.max_batch_samples) {
+      if (should_stop_ && should_stop_()) return false;
       const std::size_t n = std::min(options_.max_batch_samples, picks.size() - first);
       samples.resize(n * width);
       parallel_for(
@@ -139,6 +140,7 @@ void LocalPlanner::check_motions(const float* from, const float* to, std::size_t
       if (!invalid[e]) remaining += order[e].size() - next[e];
     per_motion *= 2;
   }
+  return true;
 }
 
 double LocalPlanner::last_valid_fraction(const float* a, const float* b) {

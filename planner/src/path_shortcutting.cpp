@@ -51,7 +51,7 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
       std::copy_n(&(*path)[pairs[p].second * width], width, &to[p * width]);
     }
     std::vector<std::uint8_t> invalid(pairs.size());
-    local->check_motions(from.data(), to.data(), pairs.size(), invalid.data());
+    if (!local->check_motions(from.data(), to.data(), pairs.size(), invalid.data())) break;
     auto d = [&](std::size_t i, std::size_t j) {
       return static_cast<double>(
           configuration_distance(metric, &(*path)[i * width], &(*path)[j * width]));

@@ -169,7 +169,8 @@ void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanRe
     std::copy_n(roadmap_.vertex(e.b), width, &to[i * width]);
   }
   std::vector<std::uint8_t> invalid(edges.size());
-  local_.check_motions(from.data(), to.data(), edges.size(), invalid.data());
+  // Stopped part way: the edges stay unknown.
+  if (!local_.check_motions(from.data(), to.data(), edges.size(), invalid.data())) return;
   for (std::size_t i = 0; i < edges.size(); ++i)
     roadmap_.edge(edges[i]).state = invalid[i] ? EdgeState::kInvalid : EdgeState::kValid;
   result->edges_checked += edges.size();
@@ -180,6 +181,9 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   PlanResult result;
   local_.reset_stats();
   const int width = scene_.space.width();
+  local_.set_stop([this] {
+    return (options_.should_stop && options_.should_stop()) || elapsed() >= options_.time_limit_s;
+  });
   const std::uint32_t s = roadmap_.add_vertex(start);
   const std::uint32_t g = roadmap_.add_vertex(goal);
   LocalPlanner fine(scene_, checker_, refined(options_.local, options_.final_check_refinement));

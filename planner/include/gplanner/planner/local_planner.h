@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "gplanner/knn_gpu/configuration_metric.h"
@@ -33,8 +34,9 @@ struct LocalPlannerOptions {
   double max_displacement = 0;
   // Remaining samples at or below this many are checked in one batch.
   std::size_t one_batch_samples = 1 << 16;
-  // No batch holds more samples than this (memory).
-  std::size_t max_batch_samples = 1 << 21;
+  // No batch holds more samples than this (memory; and stop conditions are polled
+  // between batches).
+  std::size_t max_batch_samples = 1 << 18;
 };
 
 struct MotionCheckStats {
@@ -55,8 +57,12 @@ class LocalPlanner {
 
   // from, to: shape [count, width]; invalid: shape [count], set to 1 when some interior
   // sample of the motion collides, 0 otherwise. The endpoints are not checked: callers
-  // check states in their own batches.
-  void check_motions(const float* from, const float* to, std::size_t count, std::uint8_t* invalid);
+  // check states in their own batches. Returns false, with `invalid` incomplete, when
+  // the stop condition (set_stop) said to stop between two batches.
+  bool check_motions(const float* from, const float* to, std::size_t count, std::uint8_t* invalid);
+
+  // Polled between batches of check_motions; true stops it. Empty: never stop.
+  void set_stop(std::function<bool()> should_stop) { should_stop_ = std::move(should_stop); }
 
   // Every sample of the motion, in order from a (exclusive) to b (inclusive), in one
   // batch: the fraction of the way of the last valid sample before the first
@@ -77,6 +83,7 @@ class LocalPlanner {
   ConfigurationMetric metric_;
   MotionBound bound_;
   MotionCheckStats stats_;
+  std::function<bool()> should_stop_;
 };
 
 // The interior sample indices 1 .. segments - 1, coarse to fine: the midpoint first,

@@ -5,7 +5,7 @@
 // whose shortcuts are checked again with `fine` (dropping those that fail, until the
 // path holds only shortcuts both passed); then puts a midpoint into every segment so
 // that the next round can cut corners closer. A path valid at fine's resolution stays
-// so.
+// so. Stops, with the path as it is, when `local`'s stop condition says so.
 
 #include <random>
 #include <vector>

@@ -146,6 +146,79 @@ std::string resolve_resource(const std::string& uri, const std::string& base_fol
   return (fs::path(base_folder) / uri).lexically_normal().string();
 }
 
+namespace {
+
+// The kinematic tree's structure, checked on the XML before urdfdom reads it: urdfdom
+// gives no line numbers for these errors, and on some broken trees (cycles) leaks its
+// links.
+void check_tree(const tinyxml2::XMLDocument& doc, const std::string& path) {
+  const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
+  if (robot == nullptr) throw InputError({path, 1, "robot"}, "no <robot> element; not a URDF");
+  std::map<std::string, int> links;  // name -> line
+  for (const tinyxml2::XMLElement* link = robot->FirstChildElement("link"); link;
+       link = link->NextSiblingElement("link")) {
+    const char* name = link->Attribute("name");
+    if (name == nullptr || *name == '\0')
+      throw InputError({path, link->GetLineNum(), "link"}, "a link without a name; name it");
+    if (!links.emplace(name, link->GetLineNum()).second) {
+      throw InputError({path, link->GetLineNum(), std::string("link '") + name + "'"},
+                       "defined twice; give each link its own name");
+    }
+  }
+  if (links.empty()) throw InputError({path, robot->GetLineNum(), "robot"}, "no links; add one");
+  std::map<std::string, std::string> parent_of;  // child link -> parent link
+  for (const tinyxml2::XMLElement* joint = robot->FirstChildElement("joint"); joint;
+       joint = joint->NextSiblingElement("joint")) {
+    const char* name = joint->Attribute("name");
+    const std::string key = std::string("joint '") + (name ? name : "") + "'";
+    const int line = joint->GetLineNum();
+    std::string ends[2];
+    const char* tags[2] = {"parent", "child"};
+    for (int k = 0; k < 2; ++k) {
+      const tinyxml2::XMLElement* e = joint->FirstChildElement(tags[k]);
+      const char* link = e ? e->Attribute("link") : nullptr;
+      if (link == nullptr) {
+        throw InputError({path, line, key},
+                         std::string("no <") + tags[k] + " link=...>; name the " + tags[k] + " link");
+      }
+      if (!links.count(link)) {
+        throw InputError({path, line, key}, std::string(tags[k]) + " link '" + link +
+                                                "' is not defined; define it or fix the name");
+      }
+      ends[k] = link;
+    }
+    if (ends[0] == ends[1])
+      throw InputError({path, line, key}, "joins link '" + ends[0] + "' to itself");
+    if (!parent_of.emplace(ends[1], ends[0]).second) {
+      throw InputError({path, line, key}, "link '" + ends[1] +
+                                              "' is already the child of another joint; a URDF "
+                                              "is a tree, each link with one parent joint");
+    }
+  }
+  std::vector<std::string> roots;
+  for (const auto& [name, line] : links)
+    if (!parent_of.count(name)) roots.push_back(name);
+  if (roots.size() > 1) {
+    throw InputError({path, robot->GetLineNum(), "robot"},
+                     "several root links ('" + roots[0] + "', '" + roots[1] +
+                         "'); join every link to one tree");
+  }
+  // With one parent per link, a link whose ancestors never reach the root lies on a
+  // cycle.
+  for (const auto& [name, line] : links) {
+    std::string at = name;
+    for (std::size_t steps = 0; parent_of.count(at); ++steps) {
+      if (steps > links.size()) {
+        throw InputError({path, line, "link '" + name + "'"},
+                         "lies on a cycle of joints; a URDF is a tree");
+      }
+      at = parent_of.at(at);
+    }
+  }
+}
+
+}  // namespace
+
 RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
                      const SourceLocation& referenced_from) {
   const std::string xml = read_text_file(urdf_path, referenced_from, "URDF");
@@ -154,6 +227,7 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
     throw InputError({urdf_path, doc.ErrorLineNum(), "xml"},
                      std::string("not well-formed XML: ") + doc.ErrorName() + "; fix the file");
   }
+  check_tree(doc, urdf_path);
   const std::map<std::string, int> link_lines = element_lines(doc, "link");
   const std::map<std::string, int> joint_lines = element_lines(doc, "joint");
 

@@ -568,16 +568,44 @@ TEST_F(SceneErrors, UrdfNotWellFormed) {
 }
 
 TEST_F(SceneErrors, UrdfJointNamesMissingLink) {
-  const std::string urdf = write("arm.urdf", arm_urdf("<box size=\"0.2 0.2 0.2\"/>", "gripper"));
+  const std::string text = arm_urdf("<box size=\"0.2 0.2 0.2\"/>", "gripper");
+  const std::string urdf = write("arm.urdf", text);
   const std::string scene = write("scene.yaml", ArmScene().text());
   EXPECT_TRUE(FailsWith([&] { load_scene(scene); },
-                        {urdf, kAnyLine, "robot", {"does not parse", "gripper"}}));
+                        {urdf, line_of(text, "<joint name=\"drop\""), "joint 'drop'",
+                         {"gripper", "not defined"}}));
+}
+
+// Broken trees: each a line-numbered error before urdfdom reads the file.
+TEST_F(SceneErrors, UrdfThatIsNoTree) {
+  const std::string base = arm_urdf();
+  const std::string end = "</robot>";
+  const std::vector<std::vector<std::string>> cases = {
+      // extra XML before </robot>, the key and line it must name, and what it must say
+      {"<joint name=\"back\" type=\"fixed\"><parent link=\"link2\"/><child link=\"base\"/></joint>",
+       "link 'base'", "<link name=\"base\">", "cycle"},
+      {"<joint name=\"twice\" type=\"fixed\"><parent link=\"base\"/><child link=\"link2\"/></joint>",
+       "joint 'twice'", "<joint name=\"twice\"", "already the child"},
+      {"<joint name=\"self\" type=\"fixed\"><parent link=\"base\"/><child link=\"base\"/></joint>",
+       "joint 'self'", "<joint name=\"self\"", "itself"},
+      {"<link name=\"link1\"/>", "link 'link1'", "<link name=\"link1\"/>", "defined twice"},
+      {"<link name=\"loose\"/>", "robot", "<robot name", "several root links"},
+      {"<joint name=\"open\" type=\"fixed\"><parent link=\"base\"/></joint>", "joint 'open'",
+       "<joint name=\"open\"", "child link"}};
+  for (const auto& c : cases) {
+    std::string text = base;
+    text.replace(text.rfind(end), end.size(), c[0] + "\n" + end);
+    const std::string urdf = write("arm.urdf", text);
+    const std::string scene = write("scene.yaml", ArmScene().text());
+    EXPECT_TRUE(FailsWith([&] { load_scene(scene); }, {urdf, line_of(text, c[2]), c[1], {c[3]}}))
+        << c[0];
+  }
 }
 
 TEST_F(SceneErrors, UrdfNotARobot) {
   const std::string urdf = write("arm.urdf", "<?xml version=\"1.0\"?>\n<model name=\"arm\"/>\n");
   const std::string scene = write("scene.yaml", ArmScene().text());
-  EXPECT_TRUE(FailsWith([&] { load_scene(scene); }, {urdf, kAnyLine, "robot", {"does not parse"}}));
+  EXPECT_TRUE(FailsWith([&] { load_scene(scene); }, {urdf, kAnyLine, "robot", {"no <robot>"}}));
 }
 
 TEST_F(SceneErrors, UrdfFileMissing) {

@@ -19,23 +19,6 @@
 namespace gplan {
 namespace {
 
-std::string json_text(const std::string& text) {
-  std::ostringstream out;
-  out << '"';
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out << '\\' << c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << static_cast<int>(c)
-          << std::dec;
-    } else {
-      out << c;
-    }
-  }
-  out << '"';
-  return out.str();
-}
-
 // Refuses a file that cannot be written before the work, not after.
 void require_writable_file(const std::string& option, const std::string& file) {
   if (file.empty()) return;
@@ -152,13 +135,13 @@ int run_plan(int argc, char** argv) {
   if (result.solved && !picture.empty()) std::cout << "wrote       " << picture << " (picture)\n";
   if (!save.empty()) std::cout << "wrote       " << save << " (roadmap)\n";
   if (args.flag("json")) {
-    std::cout << std::setprecision(6) << "{\"scene\":" << json_text(scene_file)
-              << ",\"name\":" << json_text(scene.name)
-              << ",\"planner\":" << json_text(gplanner::strategy_name(strategy))
-              << ",\"backend\":" << json_text(checker->backend())
-              << ",\"knn\":" << json_text(neighbors->device()) << ",\"seed\":" << options.seed
+    std::cout << std::setprecision(6) << "{\"scene\":" << json_string(scene_file)
+              << ",\"name\":" << json_string(scene.name)
+              << ",\"planner\":" << json_string(gplanner::strategy_name(strategy))
+              << ",\"backend\":" << json_string(checker->backend())
+              << ",\"knn\":" << json_string(neighbors->device()) << ",\"seed\":" << options.seed
               << ",\"solved\":" << (result.solved ? "true" : "false")
-              << ",\"stop_reason\":" << json_text(result.stop_reason)
+              << ",\"stop_reason\":" << json_string(result.stop_reason)
               << ",\"length\":" << result.length
               << ",\"length_before_shortcut\":" << result.length_before_shortcut
               << ",\"waypoints\":" << waypoints << ",\"milestones\":" << result.milestones

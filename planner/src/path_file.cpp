@@ -16,7 +16,9 @@ void write_path_file(const std::string& path, const Scene& scene, const PlanResu
   write_file_atomically(path, [&](std::ostream& out) {
     out << std::setprecision(9);
     out << "# A path from the start to the goal of " << scene.file << ", by gplan plan.\n";
-    out << "scene: \"" << scene.file << "\"\n";
+    out << "scene: \"";
+    for (const char c : scene.file) out << (c == '"' || c == '\\' ? "\\" : "") << c;
+    out << "\"\n";
     out << "planner: " << planner << "\n";
     out << "backend: " << backend << "\n";
     out << "length: " << result.length << "  # under the planner's metric\n";

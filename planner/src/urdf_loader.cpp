@@ -178,8 +178,8 @@ void check_tree(const tinyxml2::XMLDocument& doc, const std::string& path) {
       const tinyxml2::XMLElement* e = joint->FirstChildElement(tags[k]);
       const char* link = e ? e->Attribute("link") : nullptr;
       if (link == nullptr) {
-        throw InputError({path, line, key},
-                         std::string("no <") + tags[k] + " link=...>; name the " + tags[k] + " link");
+        throw InputError({path, line, key}, std::string("no <") + tags[k] +
+                                                " link=...>; name the " + tags[k] + " link");
       }
       if (!links.count(link)) {
         throw InputError({path, line, key}, std::string(tags[k]) + " link '" + link +
@@ -199,9 +199,9 @@ void check_tree(const tinyxml2::XMLDocument& doc, const std::string& path) {
   for (const auto& [name, line] : links)
     if (!parent_of.count(name)) roots.push_back(name);
   if (roots.size() > 1) {
-    throw InputError({path, robot->GetLineNum(), "robot"},
-                     "several root links ('" + roots[0] + "', '" + roots[1] +
-                         "'); join every link to one tree");
+    throw InputError(
+        {path, robot->GetLineNum(), "robot"},
+        "several root links ('" + roots[0] + "', '" + roots[1] + "'); join every link to one tree");
   }
   // With one parent per link, a link whose ancestors never reach the root lies on a
   // cycle.

@@ -571,9 +571,9 @@ TEST_F(SceneErrors, UrdfJointNamesMissingLink) {
   const std::string text = arm_urdf("<box size=\"0.2 0.2 0.2\"/>", "gripper");
   const std::string urdf = write("arm.urdf", text);
   const std::string scene = write("scene.yaml", ArmScene().text());
-  EXPECT_TRUE(FailsWith([&] { load_scene(scene); },
-                        {urdf, line_of(text, "<joint name=\"drop\""), "joint 'drop'",
-                         {"gripper", "not defined"}}));
+  EXPECT_TRUE(FailsWith(
+      [&] { load_scene(scene); },
+      {urdf, line_of(text, "<joint name=\"drop\""), "joint 'drop'", {"gripper", "not defined"}}));
 }
 
 // Broken trees: each a line-numbered error before urdfdom reads the file.
@@ -584,7 +584,8 @@ TEST_F(SceneErrors, UrdfThatIsNoTree) {
       // extra XML before </robot>, the key and line it must name, and what it must say
       {"<joint name=\"back\" type=\"fixed\"><parent link=\"link2\"/><child link=\"base\"/></joint>",
        "link 'base'", "<link name=\"base\">", "cycle"},
-      {"<joint name=\"twice\" type=\"fixed\"><parent link=\"base\"/><child link=\"link2\"/></joint>",
+      {"<joint name=\"twice\" type=\"fixed\"><parent link=\"base\"/><child "
+       "link=\"link2\"/></joint>",
        "joint 'twice'", "<joint name=\"twice\"", "already the child"},
       {"<joint name=\"self\" type=\"fixed\"><parent link=\"base\"/><child link=\"base\"/></joint>",
        "joint 'self'", "<joint name=\"self\"", "itself"},

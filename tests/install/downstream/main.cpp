@@ -31,7 +31,8 @@ int main(int argc, char** argv) {
     gplanner::ompl_adapters::row_to_state(scene, scene.goal.data(), goal.get());
     setup.setStartAndGoalStates(start, goal);
     if (ours) {
-      setup.setPlanner(std::make_shared<gplanner::ompl_adapters::LazyPrm>(si, scene, checker.get()));
+      setup.setPlanner(
+          std::make_shared<gplanner::ompl_adapters::LazyPrm>(si, scene, checker.get()));
     } else {
       setup.setPlanner(std::make_shared<og::RRTConnect>(si));
     }

@@ -24,9 +24,9 @@ constexpr int kMaxContinuousJointIndex = 64;
 struct ConfigurationMetric {
   MetricBase base = MetricBase::kNone;
   std::int32_t joint_count = 0;
-  float position_weight = 1;  // per metre of base translation
-  float rotation_weight = 1;  // per radian of base rotation angle
-  float joint_weight = 1;     // per radian (or metre) of joint motion
+  float position_weight = 1;          // per metre of base translation
+  float rotation_weight = 1;          // per radian of base rotation angle
+  float joint_weight = 1;             // per radian (or metre) of joint motion
   std::uint64_t continuous_mask = 0;  // bit j set: joint j wraps at +-pi
 
   GP_METRIC_HD int base_width() const {

@@ -22,12 +22,24 @@
 namespace gplanner {
 namespace {
 
-enum class Contact { kFaceFace, kEdgeEdge, kVertexFace };
+// kNeedle: the robot is one sliver triangle (1e-6 as wide as long) whose tip points at
+// the obstacle's face; kSegment: one degenerate triangle, its three vertices on a line.
+enum class Contact { kFaceFace, kEdgeEdge, kVertexFace, kNeedle, kSegment };
 
 const char* name_of(Contact c) {
-  return c == Contact::kFaceFace   ? "face-face"
-         : c == Contact::kEdgeEdge ? "edge-edge"
-                                   : "vertex-face";
+  switch (c) {
+    case Contact::kFaceFace:
+      return "face-face";
+    case Contact::kEdgeEdge:
+      return "edge-edge";
+    case Contact::kVertexFace:
+      return "vertex-face";
+    case Contact::kNeedle:
+      return "needle tip-face";
+    case Contact::kSegment:
+      return "degenerate tip-face";
+  }
+  return "";
 }
 
 // A cube of side `side` centred at its origin, as OBJ text.
@@ -40,6 +52,22 @@ std::string cube_obj(double side) {
         << "\n";
   out << "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\n"
          "f 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
+  return out.str();
+}
+
+// The robot's mesh: the cube, or a single triangle with its tip at the origin reaching
+// along +x (a sliver, or three points on a line).
+std::string robot_obj(double side, Contact contact) {
+  if (contact != Contact::kNeedle && contact != Contact::kSegment) return cube_obj(side);
+  std::ostringstream out;
+  out << std::setprecision(17) << "v 0 0 0\n";
+  if (contact == Contact::kNeedle) {
+    out << "v " << side << ' ' << -0.5e-6 * side << " 0\nv " << side << ' ' << 0.5e-6 * side
+        << " 0\n";
+  } else {
+    out << "v " << side / 2 << " 0 0\nv " << side << " 0 0\n";
+  }
+  out << "f 1 2 3\n";
   return out.str();
 }
 
@@ -63,7 +91,9 @@ std::string scene_yaml(double side, Contact contact) {
 // The robot's pose at distance `gap` (negative: penetration) from the obstacle on +x.
 std::vector<float> pose_at(double side, Contact contact, double gap) {
   double x = 0, qw = 1, qx = 0, qy = 0, qz = 0;
-  if (contact == Contact::kFaceFace) {
+  if (contact == Contact::kNeedle || contact == Contact::kSegment) {
+    x = side / 2 + gap;  // the tip, at the robot's origin
+  } else if (contact == Contact::kFaceFace) {
     x = side + gap;
   } else if (contact == Contact::kEdgeEdge) {
     // Turned 45 degrees about z: an edge along z faces -x, crossing the obstacle's edge.
@@ -91,9 +121,10 @@ std::vector<float> pose_at(double side, Contact contact, double gap) {
 void expect_within_band(const std::vector<std::string>& backends) {
   std::size_t collisions = 0, free = 0, in_band_collisions = 0, in_band = 0;
   for (const double side : {1e-4, 1e-2, 1.0, 1e2, 1e4}) {
-    for (const Contact contact : {Contact::kFaceFace, Contact::kEdgeEdge, Contact::kVertexFace}) {
+    for (const Contact contact : {Contact::kFaceFace, Contact::kEdgeEdge, Contact::kVertexFace,
+                                  Contact::kNeedle, Contact::kSegment}) {
       testing::ScratchFolder scratch;
-      scratch.write("cube.obj", cube_obj(side));
+      scratch.write("cube.obj", robot_obj(side, contact));
       const Scene scene = load_scene(scratch.write("scene.yaml", scene_yaml(side, contact)));
       const double delta = tolerance_delta(scene);
       // Gaps: relative to the model from 1e-7 to 1e-2, and around delta.

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "gplanner/collision_gpu/detail/cuda_memory.cuh"
 #include "gplanner/collision_gpu/detail/query.h"
 #include "gplanner/collision_gpu/gpu_batch_checker.h"
 #include "gplanner/collision_gpu/model_view.h"
@@ -16,46 +17,9 @@
 namespace gplanner {
 namespace {
 
-void check_cuda(cudaError_t status, const char* what) {
-  if (status != cudaSuccess) {
-    throw std::runtime_error(std::string("CUDA: ") + what + ": " + cudaGetErrorString(status));
-  }
-}
+void check_cuda(cudaError_t status, const char* what) { cuda::check(status, "CUDA", what); }
 
-// An owning device buffer; kernels only ever see the raw pointer.
-template <typename T>
-class DeviceBuffer {
- public:
-  DeviceBuffer() = default;
-  ~DeviceBuffer() { release(); }
-  DeviceBuffer(const DeviceBuffer&) = delete;
-  DeviceBuffer& operator=(const DeviceBuffer&) = delete;
-
-  void reserve(std::size_t count) {
-    if (count <= capacity_) return;
-    release();
-    check_cuda(cudaMalloc(&data_, std::max<std::size_t>(count, 1) * sizeof(T)), "cudaMalloc");
-    capacity_ = count;
-  }
-  void upload(const std::vector<T>& host) {
-    reserve(host.size());
-    if (!host.empty()) {
-      check_cuda(cudaMemcpy(data_, host.data(), host.size() * sizeof(T), cudaMemcpyHostToDevice),
-                 "upload");
-    }
-  }
-  T* get() const { return data_; }
-  std::size_t capacity() const { return capacity_; }
-
- private:
-  void release() {
-    if (data_) cudaFree(data_);
-    data_ = nullptr;
-    capacity_ = 0;
-  }
-  T* data_ = nullptr;
-  std::size_t capacity_ = 0;
-};
+using cuda::DeviceBuffer;
 
 struct Counters {
   unsigned long long bv_tests;

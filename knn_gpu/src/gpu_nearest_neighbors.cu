@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "gplanner/collision_gpu/detail/cuda_memory.cuh"
 #include "gplanner/collision_gpu/gpu_device.h"
 #include "gplanner/knn_gpu/nearest_neighbors.h"
 #include "gpu_nearest_neighbors_device.cuh"
@@ -19,67 +20,11 @@ namespace gplanner {
 namespace {
 
 void check_cuda(cudaError_t status, const char* what) {
-  if (status != cudaSuccess) {
-    throw std::runtime_error(std::string("GPU k-NN: CUDA: ") + what + ": " +
-                             cudaGetErrorString(status));
-  }
+  cuda::check(status, "GPU k-NN: CUDA", what);
 }
 
-// An owning device buffer that only grows; kernels only ever see the raw pointer.
-template <typename T>
-class DeviceBuffer {
- public:
-  DeviceBuffer() = default;
-  ~DeviceBuffer() { release(); }
-  DeviceBuffer(const DeviceBuffer&) = delete;
-  DeviceBuffer& operator=(const DeviceBuffer&) = delete;
-
-  void reserve(std::size_t count) {
-    if (count <= capacity_) return;
-    release();
-    check_cuda(cudaMalloc(&data_, std::max<std::size_t>(count, 1) * sizeof(T)), "cudaMalloc");
-    capacity_ = count;
-  }
-  T* get() const { return data_; }
-
- private:
-  void release() {
-    if (data_) cudaFree(data_);
-    data_ = nullptr;
-    capacity_ = 0;
-  }
-  T* data_ = nullptr;
-  std::size_t capacity_ = 0;
-};
-
-// An owning page-locked host buffer that only grows: downloads into it run at full
-// bus speed, where pageable memory is copied through the driver's own staging.
-template <typename T>
-class PinnedBuffer {
- public:
-  PinnedBuffer() = default;
-  ~PinnedBuffer() { release(); }
-  PinnedBuffer(const PinnedBuffer&) = delete;
-  PinnedBuffer& operator=(const PinnedBuffer&) = delete;
-
-  void reserve(std::size_t count) {
-    if (count <= capacity_) return;
-    release();
-    check_cuda(cudaMallocHost(&data_, std::max<std::size_t>(count, 1) * sizeof(T)),
-               "cudaMallocHost");
-    capacity_ = count;
-  }
-  T* get() const { return data_; }
-
- private:
-  void release() {
-    if (data_) cudaFreeHost(data_);
-    data_ = nullptr;
-    capacity_ = 0;
-  }
-  T* data_ = nullptr;
-  std::size_t capacity_ = 0;
-};
+using cuda::DeviceBuffer;
+using cuda::PinnedBuffer;
 
 int blocks_for(std::size_t threads, int block) {
   return static_cast<int>((threads + block - 1) / block);

@@ -224,22 +224,29 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
         report("edges", result);
         continue;
       }
-      // Every edge valid: re-check the path finely; an edge failing that is invalid.
-      std::vector<float> from(path.edges.size() * width), to(path.edges.size() * width);
-      for (std::size_t i = 0; i < path.edges.size(); ++i) {
-        std::copy_n(roadmap_.vertex(path.vertices[i]), width, &from[i * width]);
-        std::copy_n(roadmap_.vertex(path.vertices[i + 1]), width, &to[i * width]);
+      // Every edge valid: re-check finely the path's edges not yet re-checked; an edge
+      // failing that is invalid.
+      std::vector<std::uint32_t> unchecked;
+      for (const std::uint32_t e : path.edges)
+        if (!certified_.count(e)) unchecked.push_back(e);
+      std::vector<float> from(unchecked.size() * width), to(unchecked.size() * width);
+      for (std::size_t i = 0; i < unchecked.size(); ++i) {
+        const RoadmapEdge& e = roadmap_.edge(unchecked[i]);
+        std::copy_n(roadmap_.vertex(e.a), width, &from[i * width]);
+        std::copy_n(roadmap_.vertex(e.b), width, &to[i * width]);
       }
-      std::vector<std::uint8_t> invalid(path.edges.size());
+      std::vector<std::uint8_t> invalid(unchecked.size());
       {
         StageTimer timer(&result.times.edge_checks);
-        fine.check_motions(from.data(), to.data(), path.edges.size(), invalid.data());
+        fine.check_motions(from.data(), to.data(), unchecked.size(), invalid.data());
       }
       bool certified = true;
-      for (std::size_t i = 0; i < path.edges.size(); ++i) {
+      for (std::size_t i = 0; i < unchecked.size(); ++i) {
         if (invalid[i]) {
-          roadmap_.edge(path.edges[i]).state = EdgeState::kInvalid;
+          roadmap_.edge(unchecked[i]).state = EdgeState::kInvalid;
           certified = false;
+        } else {
+          certified_.insert(unchecked[i]);
         }
       }
       if (certified) {

@@ -13,6 +13,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <unordered_set>
 
 #include "gplanner/planner/collision_checker.h"
 #include "gplanner/planner/local_planner.h"
@@ -46,6 +47,7 @@ class RoadmapPlanner {
   void set_roadmap(Roadmap roadmap) {
     roadmap_ = std::move(roadmap);
     connected_ = 0;
+    certified_.clear();
   }
   const PlanOptions& options() const { return options_; }
   // New settings for the next solve() (the roadmap stays; the local planner keeps the
@@ -73,6 +75,8 @@ class RoadmapPlanner {
   std::size_t states_checked_ = 0, states_free_ = 0;
   // Milestones [0, connected_) have been joined to their neighbours.
   std::size_t connected_ = 0;
+  // Edges that passed the fine re-check (in the roadmap as it is now).
+  std::unordered_set<std::uint32_t> certified_;
   std::chrono::steady_clock::time_point started_;
 };
 

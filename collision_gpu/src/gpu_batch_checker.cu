@@ -203,8 +203,10 @@ __global__ void packet_kernel(CollisionModelView m, const float* d_q, int n,
   const int query = valid ? static_cast<int>(d_order[index]) : 0;
   detail::TraversalCounts counts;
   detail::Xf X_WL[detail::kMaxLinks];
-  if (valid) detail::link_poses(m, d_q + static_cast<std::size_t>(query) * m.width, X_WL);
-  bool collided = false;
+  const float* q = d_q + static_cast<std::size_t>(query) * m.width;
+  if (valid) detail::link_poses(m, q, X_WL);
+  // A row that is no configuration collides from the start and joins no traversal.
+  bool collided = valid && !detail::is_configuration(m, q);
   const int bodies = m.link_count + m.pair_count;
   for (int body = 0; body < bodies; ++body) {
     if (__all_sync(kFullMask, !valid || collided)) break;
@@ -259,11 +261,17 @@ __device__ void store_transform(const detail::Xf& X, float* out) {
 // Kinematics and broad phase per query; every surviving body pair becomes a job with
 // one root task.
 __global__ void balanced_roots_kernel(CollisionModelView m, const float* d_q, int n, Job* d_jobs,
-                                      int job_capacity, Task* d_tasks, Counters* d_counters) {
+                                      int job_capacity, Task* d_tasks, std::uint8_t* d_verdicts,
+                                      Counters* d_counters) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
+  const float* q = d_q + static_cast<std::size_t>(i) * m.width;
+  if (!detail::is_configuration(m, q)) {
+    d_verdicts[i] = 1;  // no configuration: colliding, and no jobs
+    return;
+  }
   detail::Xf X_WL[detail::kMaxLinks];
-  detail::link_poses(m, d_q + static_cast<std::size_t>(i) * m.width, X_WL);
+  detail::link_poses(m, q, X_WL);
   auto emit = [&](BodyRange a, BodyRange b, const detail::Xf& X_AB) {
     const unsigned slot = atomicAdd(&d_counters->jobs, 1u);
     if (slot >= static_cast<unsigned>(job_capacity)) {
@@ -604,7 +612,7 @@ struct GpuBatchChecker::Impl {
     check_cuda(cudaMemset(verdicts.get(), 0, n), "memset");
     balanced_roots_kernel<<<blocks_for(n, 128), 128>>>(view, configurations.get(), n, jobs.get(),
                                                        static_cast<int>(job_capacity), tasks.get(),
-                                                       counters.get());
+                                                       verdicts.get(), counters.get());
     check_cuda(cudaGetLastError(), "balanced roots kernel");
     Counters c = read_counters();
     if (c.jobs_overflow) return false;

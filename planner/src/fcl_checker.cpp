@@ -3,6 +3,7 @@
 #include <fcl/fcl.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "gplanner/planner/forward_kinematics.h"
@@ -87,7 +88,18 @@ struct FclChecker::Impl {
     }
   }
 
+  // Whether row q is a configuration at all: every entry finite and, for a floating
+  // base, a quaternion of non-zero length (Eigen would read a zero one as no turn).
+  // Rows that are not are reported colliding, as the collision core does.
+  bool is_configuration(const float* q) const {
+    const ConfigurationSpace& space = scene.space;
+    for (int k = 0; k < space.width(); ++k)
+      if (!std::isfinite(q[k])) return false;
+    return space.base != BaseType::kFloating || q[3] != 0 || q[4] != 0 || q[5] != 0 || q[6] != 0;
+  }
+
   bool collides(const float* q, Workspace* w) const {
+    if (!is_configuration(q)) return true;
     pose_links(q, w);
     fcl::CollisionRequestd request;  // one contact is enough for a verdict
     for (int l : links_with_geometry) {

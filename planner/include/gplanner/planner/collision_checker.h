@@ -18,6 +18,13 @@ class CollisionChecker {
 
   // configurations: shape [n, width], row-major; verdicts: shape [n], 1 when the
   // configuration collides (with the environment or itself), 0 when it is free.
+  // n = 0 is answered without reading either pointer. Rows are checked as given: a
+  // joint beyond its limits or a base outside the bounds is checked where it puts
+  // the robot (the geometric verdict, as FCL gives it); keeping rows within bounds is
+  // the caller's part (the OMPL validity checker reports such states invalid). A
+  // quaternion of any finite non-zero length means its rotation. A row that is no
+  // configuration (a NaN or infinite entry, a zero quaternion) is reported colliding
+  // on every backend: never free, and no exception in the middle of a batch.
   virtual void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) = 0;
 
   bool in_collision(const float* configuration) {

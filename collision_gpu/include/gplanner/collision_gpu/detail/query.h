@@ -26,6 +26,17 @@ GP_HD Xf load_transform(const float* m) {
   return {{{{m[0], m[1], m[2]}, {m[3], m[4], m[5]}, {m[6], m[7], m[8]}}}, {m[9], m[10], m[11]}};
 }
 
+// Whether row q (shape: [m.width]) is a configuration at all: every entry finite and,
+// for a floating base, a quaternion of non-zero length. Every traversal reports a row
+// that is not as colliding (never free, whatever NaN would make of the tests).
+GP_HD bool is_configuration(const CollisionModelView& m, const float* q) {
+  bool finite = true;
+  for (int k = 0; k < m.width; ++k) finite = finite && std::fabs(q[k]) <= 3.402823466e38f;
+  if (finite && m.base == BaseKind::kFloating)
+    return q[3] != 0.0f || q[4] != 0.0f || q[5] != 0.0f || q[6] != 0.0f;
+  return finite;
+}
+
 // X_WR, the robot root in the world, for configuration q.
 GP_HD Xf base_pose(const CollisionModelView& m, const float* q) {
   if (m.base == BaseKind::kFloating) {
@@ -197,9 +208,11 @@ GP_HD bool pair_may_touch(const CollisionModelView& m, int p, const Xf* X_WL) {
 }
 
 // The whole query: true when configuration q (shape: [m.width]) collides with the
-// environment or with itself. X_WL: scratch for m.link_count poses.
+// environment or with itself, or is no configuration (is_configuration). X_WL: scratch for
+// m.link_count poses.
 GP_HD bool query_collides(const CollisionModelView& m, const float* q, Xf* X_WL,
                           TraversalCounts* counts) {
+  if (!is_configuration(m, q)) return true;
   link_poses(m, q, X_WL);
   for (int l = 0; l < m.link_count; ++l) {
     if (link_may_touch_environment(m, l, X_WL[l]) &&

@@ -108,10 +108,20 @@ GP_HD Mat3<T> axis_angle(Vec3<T> u, T angle) {
            {u.z * u.x * k - u.y * s, u.z * u.y * k + u.x * s, c + u.z * u.z * k}}};
 }
 
-// Rotation of the quaternion (w, x, y, z), normalised first (rows may be given
-// slightly off unit length).
+// Rotation of the quaternion (w, x, y, z), normalised first (rows may be given off
+// unit length). Divided by its largest component before its length is taken, so that
+// lengths whose squares would overflow or underflow (1e30, 1e-30 in float) normalise
+// too. A zero quaternion gives NaN: callers reject it first.
 template <typename T>
 GP_HD Mat3<T> quaternion_rotation(T w, T x, T y, T z) {
+  T m = std::fabs(w);
+  m = std::fabs(x) > m ? std::fabs(x) : m;
+  m = std::fabs(y) > m ? std::fabs(y) : m;
+  m = std::fabs(z) > m ? std::fabs(z) : m;
+  w /= m;
+  x /= m;
+  y /= m;
+  z /= m;
   const T n = std::sqrt(w * w + x * x + y * y + z * z);
   w /= n;
   x /= n;

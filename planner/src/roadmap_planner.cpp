@@ -61,6 +61,7 @@ PlanOptions plan_options(const Scene& scene) {
   options.shortcut_candidates = static_cast<int>(s.number("shortcut.candidates"));
   options.local.resolution_fraction = s.number("edge_resolution");
   options.local.max_displacement = s.number("max_displacement");
+  options.sampler = sampler_options(s);
   return options;
 }
 
@@ -73,6 +74,7 @@ RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
       strategy_(strategy),
       options_(options),
       local_(scene, checker, options.local),
+      sampler_(scene.space, local_.metric(), options.sampler),
       roadmap_(scene.space.width()),
       rng_(options.seed) {}
 
@@ -99,36 +101,23 @@ void RoadmapPlanner::report(const char* stage, const PlanResult& result) const {
 }
 
 std::size_t RoadmapPlanner::add_milestones(std::size_t count, PlanResult* result) {
-  // Batches sized by the free fraction seen so far, until `count` free milestones are in
-  // (or the time is up): a first batch of `count` samples, then usually one more.
+  // Batches sized by the milestones found per attempt so far, until `count` are in (or
+  // the time is up): a first batch of `count` attempts, then usually one more.
   const int width = scene_.space.width();
   constexpr std::size_t kMaxBatch = std::size_t(1) << 22;
   std::size_t added = 0;
   while (added < count) {
-    const double free_rate =
-        states_checked_ ? std::max(0.01, static_cast<double>(states_free_) / states_checked_) : 1.0;
+    const double yield =
+        attempts_ ? std::max(0.01, static_cast<double>(attempts_found_) / attempts_) : 1.0;
     const std::size_t batch = std::min<std::size_t>(
-        kMaxBatch, static_cast<std::size_t>(std::ceil((count - added) / free_rate * 1.1)));
-    std::vector<float> q(batch * width);
-    {
-      StageTimer timer(&result->times.sampling);
-      for (std::size_t i = 0; i < batch; ++i) scene_.space.sample_uniform(&rng_, &q[i * width]);
-    }
-    std::vector<std::uint8_t> verdicts(batch);
-    {
-      StageTimer timer(&result->times.state_checks);
-      checker_->check(q.data(), batch, verdicts.data());
-    }
-    result->states_checked += batch;
-    states_checked_ += batch;
-    for (std::size_t i = 0; i < batch; ++i) {
-      if (verdicts[i]) continue;
-      ++states_free_;
-      if (added < count) {
-        roadmap_.add_vertex(&q[i * width]);
-        ++added;
-      }
-    }
+        kMaxBatch, static_cast<std::size_t>(std::ceil((count - added) / yield * 1.1)));
+    std::vector<float> found;
+    result->states_checked += sampler_.sample(&rng_, batch, checker_, &found, &result->times);
+    const std::size_t n = found.size() / width;
+    attempts_ += batch;
+    attempts_found_ += n;
+    for (std::size_t i = 0; i < n && added < count; ++i, ++added)
+      roadmap_.add_vertex(&found[i * width]);
     if (out_of_time(result)) break;
   }
   return added;
@@ -184,6 +173,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   local_.set_stop([this] {
     return (options_.should_stop && options_.should_stop()) || elapsed() >= options_.time_limit_s;
   });
+  sampler_.set_endpoints(start, goal);
   const std::uint32_t s = roadmap_.add_vertex(start);
   const std::uint32_t g = roadmap_.add_vertex(goal);
   LocalPlanner fine(scene_, checker_, refined(options_.local, options_.final_check_refinement));

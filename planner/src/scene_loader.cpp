@@ -559,6 +559,10 @@ Scene load_scene(const std::string& path) {
         {"roadmap.neighbors", 1, 64, false, true, "must be a whole number from 1 to 64"},
         {"shortcut.rounds", 0, 1000, false, true, "must be a whole number from 0 to 1000"},
         {"shortcut.candidates", 1, 1e6, false, true, "must be a whole number from 1 to 1e6"},
+        {"sampler.rotation_spread", 0, 1e9, false, false,
+         "must be 0 (uniform rotations) or a spread in radians"},
+        {"sampler.bridge_fraction", 0, 1, false, false, "must lie in [0, 1]"},
+        {"sampler.bridge_sigma", 0, 1e9, true, false, "must be a positive distance"},
     };
     for (const Range& r : ranges) {
       const double v = scene.planner.number(r.key);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gplanner/planner/local_planner.h"
+#include "gplanner/planner/milestone_sampler.h"
 
 namespace gplanner {
 
@@ -42,6 +43,7 @@ struct PlanOptions {
   // before it is returned; a path that fails sends the search back to the roadmap.
   int final_check_refinement = 10;
   LocalPlannerOptions local;
+  SamplerOptions sampler;  // how milestones are drawn
   std::function<void(const PlanProgress&)> progress;
   // Polled between stages: true stops planning (OMPL's termination conditions).
   std::function<bool()> should_stop;
@@ -49,7 +51,7 @@ struct PlanOptions {
 
 struct Scene;
 // The options a scene's planner settings give (seed, time limit, roadmap, shortcut,
-// edge resolution).
+// edge resolution, sampler).
 PlanOptions plan_options(const Scene& scene);
 
 struct PlanResult {

@@ -17,6 +17,7 @@
 
 #include "gplanner/planner/collision_checker.h"
 #include "gplanner/planner/local_planner.h"
+#include "gplanner/planner/milestone_sampler.h"
 #include "gplanner/planner/neighbor_finder.h"
 #include "gplanner/planner/plan_result.h"
 #include "gplanner/planner/roadmap.h"
@@ -69,10 +70,11 @@ class RoadmapPlanner {
   RoadmapStrategy strategy_;
   PlanOptions options_;
   LocalPlanner local_;
+  MilestoneSampler sampler_;
   Roadmap roadmap_;
   std::mt19937_64 rng_;
-  // Milestone samples drawn and found free so far: the free fraction sizes batches.
-  std::size_t states_checked_ = 0, states_free_ = 0;
+  // Sampling attempts made and milestones found so far: their ratio sizes batches.
+  std::size_t attempts_ = 0, attempts_found_ = 0;
   // Milestones [0, connected_) have been joined to their neighbours.
   std::size_t connected_ = 0;
   // Edges that passed the fine re-check (in the roadmap as it is now).

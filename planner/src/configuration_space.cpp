@@ -1,7 +1,9 @@
 #include "gplanner/planner/configuration_space.h"
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
+#include <vector>
 
 namespace gplanner {
 namespace {
@@ -38,6 +40,10 @@ int ConfigurationSpace::base_width() const {
   return 0;
 }
 
+int ConfigurationSpace::position_width() const {
+  return base == BaseType::kFloating ? 3 : (base == BaseType::kPlanar ? 2 : 0);
+}
+
 int ConfigurationSpace::width() const {
   return base_width() + static_cast<int>(planned_joints.size());
 }
@@ -48,18 +54,47 @@ int ConfigurationSpace::dof() const {
 }
 
 Eigen::Isometry3d ConfigurationSpace::base_pose(const float* q) const {
-  Eigen::Isometry3d X_WR = X_WB;
+  Eigen::Isometry3d X_SR = X_SB;
   if (base == BaseType::kFloating) {
-    X_WR = Eigen::Isometry3d::Identity();
-    X_WR.translation() = Eigen::Vector3d(q[0], q[1], q[2]);
-    X_WR.linear() = Eigen::Quaterniond(q[3], q[4], q[5], q[6]).normalized().toRotationMatrix();
+    X_SR = Eigen::Isometry3d::Identity();
+    X_SR.translation() = Eigen::Vector3d(q[0], q[1], q[2]);
+    X_SR.linear() = Eigen::Quaterniond(q[3], q[4], q[5], q[6]).normalized().toRotationMatrix();
   } else if (base == BaseType::kPlanar) {
     Eigen::Isometry3d X_BR = Eigen::Isometry3d::Identity();
     X_BR.translation() = Eigen::Vector3d(q[0], q[1], 0);
     X_BR.linear() = Eigen::AngleAxisd(q[2], Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    X_WR = X_WB * X_BR;
+    X_SR = X_SB * X_BR;
   }
-  return X_WR;
+  return X_SR;
+}
+
+Eigen::AlignedBox3d ConfigurationSpace::base_region() const {
+  Eigen::AlignedBox3d region;
+  if (base == BaseType::kFloating) {
+    region.extend(base_min);
+    region.extend(base_max);
+  } else if (base == BaseType::kPlanar) {
+    for (int corner = 0; corner < 4; ++corner) {
+      const Eigen::Vector3d p_B((corner & 1) ? base_max.x() : base_min.x(),
+                                (corner & 2) ? base_max.y() : base_min.y(), 0);
+      region.extend(X_SB * p_B);
+    }
+  } else {
+    region.extend(X_SB.translation());
+  }
+  return region;
+}
+
+void ConfigurationSpace::to_file_values(const float* q, double* values) const {
+  for (int i = 0; i < width(); ++i) values[i] = q[i];
+  for (int k = 0; k < position_width(); ++k) values[k] += row_origin[k];
+}
+
+void ConfigurationSpace::from_file_values(const double* values, float* q) const {
+  const int positions = position_width();
+  for (int i = 0; i < width(); ++i) {
+    q[i] = static_cast<float>(i < positions ? values[i] - row_origin[i] : values[i]);
+  }
 }
 
 void ConfigurationSpace::joint_positions(const RobotModel& robot, const float* q,
@@ -135,17 +170,35 @@ std::string ConfigurationSpace::entry_name(const RobotModel& robot, int i) const
 }
 
 std::string ConfigurationSpace::out_of_bounds(const RobotModel& robot, const float* q) const {
+  const std::vector<double> row(q, q + width());
+  return out_of_bounds_in_row(robot, row.data());
+}
+
+std::string ConfigurationSpace::out_of_bounds_in_file_values(const RobotModel& robot,
+                                                             const double* values) const {
+  // Made relative to row_origin in double, as the bounds were: rounding is monotonic, so
+  // a value on a bound in the file stays on it.
+  std::vector<double> row(values, values + width());
+  for (int k = 0; k < position_width(); ++k) row[k] -= row_origin[k];
+  return out_of_bounds_in_row(robot, row.data());
+}
+
+std::string ConfigurationSpace::out_of_bounds_in_row(const RobotModel& robot,
+                                                     const double* q) const {
   std::ostringstream why;
   for (int i = 0; i < width(); ++i) {
     if (!std::isfinite(q[i])) why << entry_name(robot, i) << " is not finite; ";
   }
-  const int positions = base == BaseType::kFloating ? 3 : (base == BaseType::kPlanar ? 2 : 0);
-  for (int k = 0; k < positions; ++k) {
+  // Positions as the scene file gives them; far from the origin six digits would hide
+  // the difference.
+  if (!row_origin.isZero()) why << std::setprecision(12);
+  for (int k = 0; k < position_width(); ++k) {
     if (q[k] < base_min[k] || q[k] > base_max[k]) {
-      why << entry_name(robot, k) << " = " << q[k] << " is outside the bounds [" << base_min[k]
-          << ", " << base_max[k] << "]; ";
+      why << entry_name(robot, k) << " = " << q[k] + row_origin[k] << " is outside the bounds ["
+          << base_min[k] + row_origin[k] << ", " << base_max[k] + row_origin[k] << "]; ";
     }
   }
+  why << std::setprecision(6);
   if (base == BaseType::kFloating) {
     const double norm = Eigen::Vector4d(q[3], q[4], q[5], q[6]).norm();
     if (std::abs(norm - 1) > 1e-3) why << "the quaternion has length " << norm << ", not 1; ";

@@ -46,6 +46,14 @@ struct FclChecker::Impl {
   std::vector<std::pair<int, int>> checked_pairs;
   std::vector<Workspace> workspaces;
 
+  // FCL sees the scene frame S (Scene::p_WS), as our collision core does, so the two
+  // are compared like for like. It stays the ground truth: S is the world translated by
+  // -p_WS, an isometry, under which no distance or intersection changes; the only
+  // difference is that obstacle vertices were rounded once, in double, when made
+  // relative to p_WS at load (by at most half an ulp of the world coordinate: 7e-12 m
+  // at 1e5 m, against a band of 1e-5 of the scene's size). Rows hold poses in S to
+  // begin with; in world coordinates the row's float could not place the robot within
+  // the band at all.
   Impl(const Scene& s, int requested_threads)
       : scene(s), threads(resolve_thread_count(requested_threads)) {
     const RobotModel& robot = scene.robot;
@@ -75,12 +83,12 @@ struct FclChecker::Impl {
   // Poses every link object for configuration q.
   void pose_links(const float* q, Workspace* w) const {
     const ConfigurationSpace& space = scene.space;
-    const Eigen::Isometry3d X_WR = space.base_pose(q);
+    const Eigen::Isometry3d X_SR = space.base_pose(q);  // "W" below is the scene frame
     if (scene.robot.links.size() == 1) {
-      w->X_WL.assign(1, X_WR);  // a rigid body: no kinematics
+      w->X_WL.assign(1, X_SR);  // a rigid body: no kinematics
     } else {
       space.joint_positions(scene.robot, q, w->joint_positions.data());
-      forward_kinematics(scene.robot, X_WR, w->joint_positions.data(), &w->X_WL);
+      forward_kinematics(scene.robot, X_SR, w->joint_positions.data(), &w->X_WL);
     }
     for (int l : links_with_geometry) {
       w->links[l]->setTransform(w->X_WL[l]);

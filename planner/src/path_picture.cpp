@@ -44,8 +44,9 @@ void write_path_picture(const std::string& file, const Scene& scene,
   const RobotModel& robot = scene.robot;
   const int width = space.width();
   const std::size_t m = path.size() / width;
-  // The view: the two axes along which the scene extends most.
-  const Eigen::AlignedBox3d bounds = scene.world_bounds();
+  // Drawn in the scene frame (obstacles and poses alike), relative to its bounds. The
+  // view: the two axes along which the scene extends most.
+  const Eigen::AlignedBox3d bounds = scene.bounds_S();
   const Eigen::Vector3d size = bounds.sizes();
   int drop = 0;
   for (int a = 1; a < 3; ++a)
@@ -76,7 +77,7 @@ void write_path_picture(const std::string& file, const Scene& scene,
     out << "<g fill=\"#444\" fill-opacity=\"0.12\" stroke=\"#444\" stroke-opacity=\"0.35\" "
            "stroke-width=\"0.6\">\n";
     for (const Obstacle& obstacle : scene.obstacles) {
-      const TriangleMesh& mesh = obstacle.mesh_W;
+      const TriangleMesh& mesh = obstacle.mesh_S;
       for (const Eigen::Vector3i& t : mesh.triangles) {
         const Point a = px(mesh.vertices[t[0]]), b = px(mesh.vertices[t[1]]),
                     c = px(mesh.vertices[t[2]]);

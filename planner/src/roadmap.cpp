@@ -130,12 +130,19 @@ std::uint64_t scene_fingerprint(const Scene& scene) {
     h.add(b);
   }
   h.add(scene.obstacles.size());
-  for (const Obstacle& obstacle : scene.obstacles) h.add(obstacle.mesh_W);
+  for (const Obstacle& obstacle : scene.obstacles) h.add(obstacle.mesh_S);
   const ConfigurationSpace& space = scene.space;
   h.add(static_cast<int>(space.base));
-  h.add(space.X_WB);
+  h.add(space.X_SB);
   h.bytes(space.base_min.data(), sizeof(double) * 3);
   h.bytes(space.base_max.data(), sizeof(double) * 3);
+  // Rows are in the scene frame: they mean the same world poses only with the same
+  // frame. Hashed only when moved, so that roadmaps of scenes near the origin (whose
+  // frame is the world's) keep their fingerprint.
+  if (!scene.p_WS.isZero()) {
+    h.bytes(scene.p_WS.data(), sizeof(double) * 3);
+    h.bytes(space.row_origin.data(), sizeof(double) * 3);
+  }
   for (std::size_t j = 0; j < space.planned_joints.size(); ++j) {
     h.add(space.planned_joints[j]);
     h.add(space.lower[j]);

@@ -47,7 +47,7 @@ double joint_magnitude(const RobotModel& robot, const ConfigurationSpace& space,
 }  // namespace
 
 double tolerance_delta(const Scene& scene) {
-  return scene.planner.number("delta_fraction") * scene.world_bounds().diagonal().norm();
+  return scene.planner.number("delta_fraction") * scene.bounds_S().diagonal().norm();
 }
 
 double robot_reach(const RobotModel& robot, const ConfigurationSpace& space) {
@@ -72,19 +72,7 @@ std::size_t drop_unreachable_obstacle_triangles(Scene* scene) {
   const ConfigurationSpace& space = scene->space;
   const double reach = robot_reach(scene->robot, space);
   // Where the root's origin can be.
-  Eigen::AlignedBox3d base_region;
-  if (space.base == BaseType::kFloating) {
-    base_region.extend(space.base_min);
-    base_region.extend(space.base_max);
-  } else if (space.base == BaseType::kPlanar) {
-    for (int corner = 0; corner < 4; ++corner) {
-      const Eigen::Vector3d p((corner & 1) ? space.base_max.x() : space.base_min.x(),
-                              (corner & 2) ? space.base_max.y() : space.base_min.y(), 0);
-      base_region.extend(space.X_WB * p);
-    }
-  } else {
-    base_region.extend(space.X_WB.translation());
-  }
+  const Eigen::AlignedBox3d base_region = space.base_region();
   // Grow by the reach, plus a margin well beyond the tolerance band.
   const double grow = reach * (1 + 1e-6) + 1e-3;
   const Eigen::AlignedBox3d region(base_region.min().array() - grow,
@@ -92,16 +80,16 @@ std::size_t drop_unreachable_obstacle_triangles(Scene* scene) {
   std::size_t dropped = 0;
   for (Obstacle& obstacle : scene->obstacles) {
     std::vector<Eigen::Vector3i> kept;
-    for (const Eigen::Vector3i& t : obstacle.mesh_W.triangles) {
+    for (const Eigen::Vector3i& t : obstacle.mesh_S.triangles) {
       Eigen::AlignedBox3d box;
-      for (int k = 0; k < 3; ++k) box.extend(obstacle.mesh_W.vertices[t[k]]);
+      for (int k = 0; k < 3; ++k) box.extend(obstacle.mesh_S.vertices[t[k]]);
       if (box.intersects(region)) kept.push_back(t);
     }
-    dropped += obstacle.mesh_W.triangles.size() - kept.size();
-    obstacle.mesh_W.triangles = std::move(kept);
+    dropped += obstacle.mesh_S.triangles.size() - kept.size();
+    obstacle.mesh_S.triangles = std::move(kept);
   }
   scene->obstacles.erase(std::remove_if(scene->obstacles.begin(), scene->obstacles.end(),
-                                        [](const Obstacle& o) { return o.mesh_W.empty(); }),
+                                        [](const Obstacle& o) { return o.mesh_S.empty(); }),
                          scene->obstacles.end());
   return dropped;
 }
@@ -113,7 +101,7 @@ CollisionModel build_collision_model(const Scene& scene) {
   model.base = space.base == BaseType::kFloating ? BaseKind::kFloating
                : space.base == BaseType::kPlanar ? BaseKind::kPlanar
                                                  : BaseKind::kFixed;
-  store_transform(space.X_WB, model.X_WB);
+  store_transform(space.X_SB, model.X_WB);  // the core's W is our S
   model.width = space.width();
   model.threshold = static_cast<float>(tolerance_delta(scene) / 2);
 

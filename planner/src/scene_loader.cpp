@@ -4,8 +4,10 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iomanip>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "gplanner/planner/mesh_loader.h"
 #include "gplanner/planner/scene.h"
@@ -247,7 +249,7 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
       in.fail(node["base_pose"], key + ".base_pose",
               "a floating base takes its pose from the configuration");
     }
-    space.X_WB = read_pose(in, node["base_pose"], key + ".base_pose");
+    space.X_SB = read_pose(in, node["base_pose"], key + ".base_pose");  // S is W until moved
   }
 
   const std::size_t joint_count = robot.joints.size();
@@ -371,12 +373,14 @@ void read_bounds(const YamlReader& in, const YAML::Node& node, ConfigurationSpac
   }
 }
 
-std::vector<float> read_configuration(const YamlReader& in, const YAML::Node& node,
-                                      const std::string& key, const Scene& scene) {
+// A start or goal as the file gives it (positions in world or plane coordinates), in
+// double, checked against bounds and limits before anything is rounded.
+std::vector<double> read_configuration(const YamlReader& in, const YAML::Node& node,
+                                       const std::string& key, const Scene& scene) {
   const ConfigurationSpace& space = scene.space;
   const RobotModel& robot = scene.robot;
   in.expect_map(node, key, {"base", "joints"});
-  std::vector<float> q(space.width(), 0.0f);
+  std::vector<double> q(space.width(), 0.0);
   if (space.base == BaseType::kFixed) {
     if (node["base"])
       in.fail(node["base"], key + ".base", "a fixed-base robot takes no base pose here");
@@ -389,13 +393,13 @@ std::vector<float> read_configuration(const YamlReader& in, const YAML::Node& no
       const Eigen::Quaterniond r =
           in.quaternion(in.required(base, where, "quat_wxyz"), where + ".quat_wxyz");
       const double values[7] = {p.x(), p.y(), p.z(), r.w(), r.x(), r.y(), r.z()};
-      for (int k = 0; k < 7; ++k) q[k] = static_cast<float>(values[k]);
+      for (int k = 0; k < 7; ++k) q[k] = values[k];
     } else {
       in.expect_map(base, where, {"xy", "theta"});
       const std::vector<double> xy = in.numbers(in.required(base, where, "xy"), where + ".xy", 2);
-      q[0] = static_cast<float>(xy[0]);
-      q[1] = static_cast<float>(xy[1]);
-      q[2] = static_cast<float>(in.number(in.required(base, where, "theta"), where + ".theta"));
+      q[0] = xy[0];
+      q[1] = xy[1];
+      q[2] = in.number(in.required(base, where, "theta"), where + ".theta");
     }
   }
   if (!space.planned_joints.empty()) {
@@ -413,12 +417,12 @@ std::vector<float> read_configuration(const YamlReader& in, const YAML::Node& no
     for (std::size_t i = 0; i < space.planned_joints.size(); ++i) {
       const std::string& name = robot.joints[space.planned_joints[i]].name;
       const YAML::Node value = in.required(joints, key + ".joints", name);
-      q[space.base_width() + i] = static_cast<float>(in.number(value, key + ".joints." + name));
+      q[space.base_width() + i] = in.number(value, key + ".joints." + name);
     }
   } else if (node["joints"]) {
     in.fail(node["joints"], key + ".joints", "the robot has no planned joints");
   }
-  const std::string why = space.out_of_bounds(robot, q.data());
+  const std::string why = space.out_of_bounds_in_file_values(robot, q.data());
   if (!why.empty()) in.fail(node, key, why + "; move it inside or widen the bounds");
   return q;
 }
@@ -473,32 +477,74 @@ void read_obstacles(const YamlReader& in, const YAML::Node& node, Scene* scene) 
     if (item["name"]) obstacle.name = in.text(item["name"], key + ".name");
     const Eigen::Isometry3d X_WO =
         item["pose"] ? read_pose(in, item["pose"], key + ".pose") : Eigen::Isometry3d::Identity();
-    obstacle.mesh_W = transformed(mesh, X_WO);
+    obstacle.mesh_S = transformed(mesh, X_WO);  // S is W until moved
     scene->obstacles.push_back(std::move(obstacle));
   }
 }
 
+// Moves the scene frame to scene_frame_origin of the scene's world bounds: obstacles,
+// bounds and base frame are made relative to it in double. A planar base's plane frame
+// also moves within its plane, to the point nearest p_WS, so that x and y stay small.
+void move_scene_frame(Scene* scene) {
+  const Eigen::AlignedBox3d bounds_W = scene->bounds_S();  // S is W until moved
+  const Eigen::Vector3d p_WS = scene_frame_origin(bounds_W);
+  if (p_WS.isZero()) return;
+  scene->p_WS = p_WS;
+  for (Obstacle& obstacle : scene->obstacles) {
+    for (Eigen::Vector3d& p : obstacle.mesh_S.vertices) p -= p_WS;
+  }
+  ConfigurationSpace& space = scene->space;
+  const Eigen::Isometry3d X_SW(Eigen::Translation3d(-p_WS));
+  if (space.base == BaseType::kFloating) {
+    space.row_origin = p_WS;
+  } else if (space.base == BaseType::kPlanar) {
+    const Eigen::Isometry3d X_WB = space.X_SB;  // still the world's
+    space.row_origin = X_WB.inverse() * p_WS;
+    space.row_origin.z() = 0;
+    space.X_SB = X_SW * X_WB * Eigen::Translation3d(space.row_origin);
+  } else {
+    space.X_SB = X_SW * space.X_SB;
+  }
+  space.base_min -= space.row_origin;
+  space.base_max -= space.row_origin;
+  std::ostringstream notice;
+  notice << std::setprecision(12) << scene->file << ": the scene's centre lies "
+         << bounds_W.center().norm() << " m from the world origin, more than its size ("
+         << bounds_W.diagonal().norm() << " m): configuration rows (and roadmaps, OMPL states) "
+         << "are relative to the world point [" << p_WS.x() << ", " << p_WS.y() << ", " << p_WS.z()
+         << "]; path and check files give world coordinates";
+  scene->notices.push_back(notice.str());
+}
+
 }  // namespace
+
+Eigen::Vector3d scene_frame_origin(const Eigen::AlignedBox3d& bounds_W) {
+  if (bounds_W.isEmpty()) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d c = bounds_W.center();
+  const double d = bounds_W.diagonal().norm();
+  if (!(c.norm() > d) || !(d > 0)) return Eigen::Vector3d::Zero();
+  const double unit = std::pow(10.0, std::floor(std::log10(d)));
+  return (c / unit).array().round() * unit;
+}
+
+Eigen::Isometry3d Scene::X_WS() const { return Eigen::Isometry3d(Eigen::Translation3d(p_WS)); }
 
 std::size_t Scene::obstacle_triangle_count() const {
   std::size_t count = 0;
-  for (const Obstacle& obstacle : obstacles) count += obstacle.mesh_W.triangle_count();
+  for (const Obstacle& obstacle : obstacles) count += obstacle.mesh_S.triangle_count();
   return count;
 }
 
 TriangleMesh Scene::environment_mesh() const {
   TriangleMesh environment;
-  for (const Obstacle& obstacle : obstacles) environment.append(obstacle.mesh_W);
+  for (const Obstacle& obstacle : obstacles) environment.append(obstacle.mesh_S);
   return environment;
 }
 
-Eigen::AlignedBox3d Scene::world_bounds() const {
+Eigen::AlignedBox3d Scene::bounds_S() const {
   Eigen::AlignedBox3d box;
-  for (const Obstacle& obstacle : obstacles) box.extend(obstacle.mesh_W.bounds());
-  if (space.base != BaseType::kFixed) {
-    box.extend(space.base_min);
-    box.extend(space.base_max);
-  }
+  for (const Obstacle& obstacle : obstacles) box.extend(obstacle.mesh_S.bounds());
+  if (space.base != BaseType::kFixed) box.extend(space.base_region());
   return box;
 }
 
@@ -529,10 +575,16 @@ Scene load_scene(const std::string& path) {
     read_robot(in, in.required(root, "", "robot"), &scene);
     read_bounds(in, root["bounds"], &scene.space);
     read_obstacles(in, root["obstacles"], &scene);
+    scene.dropped_obstacle_triangles = drop_unreachable_obstacle_triangles(&scene);
+    move_scene_frame(&scene);
     const YAML::Node start = in.required(root, "", "start");
     const YAML::Node goal = in.required(root, "", "goal");
-    scene.start = read_configuration(in, start, "start", scene);
-    scene.goal = read_configuration(in, goal, "goal", scene);
+    for (auto [node, key, row] : {std::make_tuple(start, "start", &scene.start),
+                                  std::make_tuple(goal, "goal", &scene.goal)}) {
+      const std::vector<double> values = read_configuration(in, node, key, scene);
+      row->resize(values.size());
+      scene.space.from_file_values(values.data(), row->data());
+    }
     scene.start_defined = in.at(start, "start");
     scene.goal_defined = in.at(goal, "goal");
     scene.planner = read_planner_settings(in, root["planner"]);
@@ -581,7 +633,6 @@ Scene load_scene(const std::string& path) {
     // A value of the wrong shape where yaml-cpp itself converts (a map key, say).
     throw InputError({path, e.mark.line + 1, "yaml"}, e.msg + "; use plain text keys and values");
   }
-  scene.dropped_obstacle_triangles = drop_unreachable_obstacle_triangles(&scene);
   return scene;
 }
 

@@ -72,9 +72,9 @@ goal: {base: {xyz: [0.5, 0, -0.5], quat_wxyz: [1, 0, 0, 0]}}
   EXPECT_EQ(scene.dropped_obstacle_triangles, 12u + 2u);
   ASSERT_EQ(scene.obstacles.size(), 2u);
   EXPECT_EQ(scene.obstacles[0].name, "near");
-  EXPECT_EQ(scene.obstacles[0].mesh_W.triangle_count(), 12u);
+  EXPECT_EQ(scene.obstacles[0].mesh_S.triangle_count(), 12u);
   EXPECT_EQ(scene.obstacles[1].name, "straddling");
-  EXPECT_EQ(scene.obstacles[1].mesh_W.triangle_count(), 10u);
+  EXPECT_EQ(scene.obstacles[1].mesh_S.triangle_count(), 10u);
 }
 
 }  // namespace

@@ -156,7 +156,7 @@ TEST_F(ForwardKinematics, BasePosesMoveTheRoot) {
 
   ConfigurationSpace planar;
   planar.base = BaseType::kPlanar;
-  planar.X_WB.translation() = Eigen::Vector3d(0, 0, 0.25);
+  planar.X_SB.translation() = Eigen::Vector3d(0, 0, 0.25);
   const float p[3] = {2, -1, static_cast<float>(kPi / 2)};
   const Eigen::Isometry3d X_WP = planar.base_pose(p);
   EXPECT_LT((X_WP.translation() - Eigen::Vector3d(2, -1, 0.25)).norm(), 1e-6);

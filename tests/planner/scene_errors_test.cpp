@@ -214,7 +214,7 @@ TEST_F(SceneErrors, ValidMeshSceneLoads) {
   ASSERT_EQ(scene.robot.links.size(), 1u);
   EXPECT_EQ(scene.robot.triangle_count(), 12u);
   ASSERT_EQ(scene.obstacles.size(), 1u);
-  EXPECT_EQ(scene.obstacles[0].mesh_W.triangle_count(), 12u);
+  EXPECT_EQ(scene.obstacles[0].mesh_S.triangle_count(), 12u);
   ASSERT_EQ(scene.start.size(), 7u);
   ASSERT_EQ(scene.goal.size(), 7u);
   EXPECT_FLOAT_EQ(scene.start[0], -1.0f);

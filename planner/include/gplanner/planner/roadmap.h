@@ -52,8 +52,9 @@ class Roadmap {
 };
 
 // 64-bit fingerprint of what decides a roadmap's validity in `scene`: the robot's
-// geometry and kinematics, the obstacles, the configuration space, the metric weights,
-// the tolerance band and the edge resolution settings.
+// geometry and kinematics, the obstacles, the configuration space (with the scene
+// frame, where moved), the metric weights, the tolerance band and the edge resolution
+// settings.
 std::uint64_t scene_fingerprint(const Scene& scene);
 
 // Writes the roadmap (atomically: a failed write leaves `path` as it was).

@@ -1,6 +1,6 @@
 #pragma once
-// A planning problem: the robot, how configurations map onto it, the static obstacles
-// in the world frame, start and goal, and planner settings.
+// A planning problem: the robot, how configurations map onto it, the static obstacles,
+// start and goal, and planner settings; all of it in the scene frame S (see p_WS).
 
 #include <string>
 #include <vector>
@@ -15,11 +15,18 @@ namespace gplanner {
 
 struct Obstacle {
   std::string name;
-  TriangleMesh mesh_W;     // in the world frame
+  TriangleMesh mesh_S;     // in the scene frame
   SourceLocation defined;  // where the scene defines it
 };
 
 struct Scene {
+  // The scene frame S is the world frame translated to p_WS. Everything geometric here
+  // (obstacles, bounds, the base frame of a fixed or planar base, start, goal and so
+  // every configuration row) is in S, made relative to it in double at load, before
+  // anything is rounded to float: far from the world origin a float cannot place a
+  // pose within the tolerance band (its spacing at 1e5 m is 7.8 mm). p_WS is zero,
+  // and S the world, for a scene near the origin (see scene_frame_origin).
+  Eigen::Vector3d p_WS = Eigen::Vector3d::Zero();
   std::string file;  // the scene file as given
   std::string name;
   std::string description;
@@ -34,15 +41,27 @@ struct Scene {
   SourceLocation start_defined;
   SourceLocation goal_defined;
   PlannerSettings planner;
-  std::vector<std::string> notices;  // things skipped while loading, worth a line each
+  // Things skipped or changed while loading (the scene frame, when moved), a line each.
+  std::vector<std::string> notices;
 
+  Eigen::Isometry3d X_WS() const;
   std::size_t obstacle_triangle_count() const;
-  // All obstacles as one mesh in the world frame: the static environment every
+  // All obstacles as one mesh in the scene frame: the static environment every
   // checker builds its BVH over.
   TriangleMesh environment_mesh() const;
-  // Bounds of everything the scene holds: obstacles and the base bounds.
-  Eigen::AlignedBox3d world_bounds() const;
+  // Bounds of everything the scene holds, in the scene frame: obstacles and the region
+  // a moving base's root can be in.
+  Eigen::AlignedBox3d bounds_S() const;
 };
+
+// The rule for p_WS, given the bounds of everything a scene holds in the world
+// (obstacles and where a moving base can be), centre c and diagonal d: the world origin
+// while |c| <= d, so that every scene near the origin (all shipped ones) keeps its rows,
+// roadmaps and results; beyond, c rounded to a multiple of the largest power of ten not
+// above d, so that rows stay short and readable. Either way coordinates in S stay
+// below about 1.5 d, where float rounding (2^-24 relative) is under 1% of the default
+// band (1e-5 d).
+Eigen::Vector3d scene_frame_origin(const Eigen::AlignedBox3d& bounds_W);
 
 // Reads and validates a scene file, loading its robot and obstacle meshes and dropping
 // obstacle triangles out of the robot's reach. Throws

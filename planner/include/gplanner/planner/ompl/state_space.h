@@ -20,7 +20,9 @@ namespace ompl_adapters {
 ompl::base::StateSpacePtr make_state_space(const Scene& scene);
 
 // Conversions between an OMPL state of make_state_space(scene) and a configuration row
-// (shape [scene.space.width()]).
+// (shape [scene.space.width()]). States, like rows, are in the scene frame: for a
+// scene far from the world origin (Scene::p_WS not zero) their base position is
+// relative to scene.space.row_origin (ConfigurationSpace::from_file_values converts).
 void state_to_row(const Scene& scene, const ompl::base::State* state, float* row);
 void row_to_state(const Scene& scene, const float* row, ompl::base::State* state);
 

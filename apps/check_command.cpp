@@ -214,10 +214,19 @@ int run_check(int argc, char** argv) {
   }
 
   if (!out.empty()) {
+    // Values as the scene file gives them (world or plane positions, not relative to the
+    // scene frame), summed in double; far from the origin (the frame moved) with all of
+    // a double's digits, since nine would not place a position within the band.
+    const int position_precision = scene.p_WS.isZero() ? 9 : 17;
+    std::vector<double> values(width);
     gplanner::write_file_atomically(out, [&](std::ostream& stream) {
-      stream << std::setprecision(9);
       for (std::size_t i = 0; i < n; ++i) {
-        for (std::size_t k = 0; k < width; ++k) stream << q[i * width + k] << ' ';
+        space.to_file_values(&q[i * width], values.data());
+        for (std::size_t k = 0; k < width; ++k) {
+          const bool position = static_cast<int>(k) < space.position_width();
+          stream << std::setprecision(position ? position_precision : 9)
+                 << (position ? values[k] : q[i * width + k]) << ' ';
+        }
         stream << int(verdicts[i]) << '\n';
       }
     });

@@ -1,6 +1,7 @@
 #pragma once
 // The path file `gplan plan --out` writes (YAML): the plan's summary, the names of a
-// configuration row's entries, and per waypoint its configuration, the robot root's
+// configuration row's entries, and per waypoint its configuration (its base position as
+// the scene file gives positions, not relative to the scene frame), the robot root's
 // pose in the world and the value of every single-value joint by name.
 
 #include <string>

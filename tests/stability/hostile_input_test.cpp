@@ -448,7 +448,8 @@ TEST(StabilityHostileInput, GpuBatchesOverATinyMemoryCapAnswerAsTheCpu) {
   REQUIRE_GPU();
   for (const char* file : {"piano.yaml", "humanoid.yaml"}) {
     const Scene scene = load(file);
-    const std::size_t n = 20000, w = scene.space.width();
+    // 50,000 rows of 7 floats (piano) or more are over 1 MiB in themselves.
+    const std::size_t n = 50000, w = scene.space.width();
     const std::vector<float> q = sample(scene, n, 13);
     auto cpu = checker_for(scene, "cpu");
     const std::vector<std::uint8_t> expected = verdicts(cpu.get(), q, w);

@@ -486,7 +486,10 @@ void read_obstacles(const YamlReader& in, const YAML::Node& node, Scene* scene) 
 // bounds and base frame are made relative to it in double. A planar base's plane frame
 // also moves within its plane, to the point nearest p_WS, so that x and y stay small.
 void move_scene_frame(Scene* scene) {
-  const Eigen::AlignedBox3d bounds_W = scene->bounds_S();  // S is W until moved
+  // S is W until moved. A fixed root counts too: the frame must suit the robot as well
+  // as the obstacles (bounds_S, which sizes the band, leaves it out).
+  Eigen::AlignedBox3d bounds_W = scene->bounds_S();
+  bounds_W.extend(scene->space.base_region());
   const Eigen::Vector3d p_WS = scene_frame_origin(bounds_W);
   if (p_WS.isZero()) return;
   scene->p_WS = p_WS;

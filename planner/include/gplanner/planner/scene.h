@@ -55,12 +55,12 @@ struct Scene {
 };
 
 // The rule for p_WS, given the bounds of everything a scene holds in the world
-// (obstacles and where a moving base can be), centre c and diagonal d: the world origin
-// while |c| <= d, so that every scene near the origin (all shipped ones) keeps its rows,
-// roadmaps and results; beyond, c rounded to a multiple of the largest power of ten not
-// above d, so that rows stay short and readable. Either way coordinates in S stay
-// below about 1.5 d, where float rounding (2^-24 relative) is under 1% of the default
-// band (1e-5 d).
+// (obstacles and where the root can be, fixed or not), centre c and diagonal d: the
+// world origin while |c| <= d, so that every scene near the origin (all shipped ones)
+// keeps its rows, roadmaps and results; beyond, c rounded to a multiple of the largest
+// power of ten not above d, so that rows stay short and readable. Either way
+// coordinates in S stay below about 1.5 d, where float rounding (2^-24 relative) is
+// under 1% of the default band (1e-5 d).
 Eigen::Vector3d scene_frame_origin(const Eigen::AlignedBox3d& bounds_W);
 
 // Reads and validates a scene file, loading its robot and obstacle meshes and dropping

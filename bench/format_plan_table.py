@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
-"""Turns the JSON lines of gplanner_plan_bench into the plan-time table of
+"""Turns the JSON lines of gplanner_plan_bench into the plan-time tables of
 bench/RESULTS.md: per scene and planner the median plan time, its range and how many
-runs found a path; and the ratios of OMPL's LazyPRM and PRM medians to ours.
+runs found a path; the ratios of OMPL's LazyPRM and PRM medians to ours (issue 4); and,
+where runs of OMPL's planners with our checker as the OMPL plugin are present
+(ompl-*@gpu), each OMPL planner with the FCL checker beside the same planner with ours
+and the ratio of their medians (issue 5).
 
 A run that found no path counts at its full time (the time limit), so a median over
 runs that mostly failed is a lower bound, marked with ">".
@@ -45,6 +48,13 @@ def main():
         return "%s%s s (%s-%s), %d/%d" % (">" if bound else "", fmt(t), fmt(min(times)),
                                          fmt(max(times)), solved, len(v))
 
+    print_ours_against_ompl(runs, median, cell)
+    if any(p.endswith("@gpu") for _, p in runs):
+        print()
+        print_plugin_against_fcl(runs, median, cell)
+
+
+def print_ours_against_ompl(runs, median, cell):
     print("| scene | " + " | ".join(PLANNERS) + " | OMPL LazyPRM / ours lazy | OMPL PRM / ours lazy |")
     print("| --- " * (len(PLANNERS) + 3) + "|")
     for scene in SCENES:
@@ -62,6 +72,32 @@ def main():
                 ratios.append("%s%.0fx" % (">" if bound else "", t / ours))
         print("| %s | %s | %s |" % (scene, " | ".join(cell(scene, p) for p in PLANNERS),
                                     " | ".join(ratios)))
+
+
+def print_plugin_against_fcl(runs, median, cell):
+    bases = ["ompl-rrtconnect", "ompl-lazyprm", "ompl-prm"]
+    header = []
+    for b in bases:
+        header += [b + " (fcl)", b + "@gpu", "fcl / gpu"]
+    print("| scene | " + " | ".join(header) + " |")
+    print("| --- " * (len(header) + 1) + "|")
+    for scene in SCENES:
+        if not any((scene, b + "@gpu") in runs for b in bases):
+            continue
+        cells = []
+        for b in bases:
+            fcl, fcl_bound = median(scene, b)
+            gpu, gpu_bound = median(scene, b + "@gpu")
+            if fcl is None or gpu is None:
+                ratio = "-"
+            elif gpu_bound and fcl_bound:
+                ratio = "both failed"
+            elif gpu_bound:
+                ratio = "<%.1fx" % (fcl / gpu)
+            else:
+                ratio = "%s%.1fx" % (">" if fcl_bound else "", fcl / gpu)
+            cells += [cell(scene, b), cell(scene, b + "@gpu"), ratio]
+        print("| %s | %s |" % (scene, " | ".join(cells)))
 
 
 def fmt(t):

@@ -2,12 +2,16 @@
 // backend) against OMPL's LazyPRM, PRM and RRTConnect as OMPL users run them: one
 // planning thread, OMPL's default settings, our FCL backend on that thread as the state
 // validity checker, OMPL's DiscreteMotionValidator at the same resolution (the scene's
-// edge_resolution of the same largest extent). Every run is a fresh planner with its own
-// seed; prints one JSON line per run.
+// edge_resolution of the same largest extent). OMPL's planners can also run with our
+// checker as the OMPL plugin gives it (planner name + "@" + backend, e.g.
+// ompl-rrtconnect@gpu: our StateValidityChecker and batched MotionValidator on that
+// backend, the two lines an OMPL user changes). Every run is a fresh planner with its
+// own seed; prints one JSON line per run.
 //
 // usage: gplanner_plan_bench SCENE [--runs N] [--time-limit S] [--planners a,b,...]
-//                            [--backend B] [--slow S] [--slow-runs M]
-//   planners: ours-lazyprm, ours-prm, ompl-lazyprm, ompl-prm, ompl-rrtconnect (default all)
+//                            [--backend B] [--slow S] [--slow-runs M] [--budget S]
+//   planners: ours-lazyprm, ours-prm, ompl-lazyprm, ompl-prm, ompl-rrtconnect (default
+//   all), and ompl-lazyprm@B, ompl-prm@B, ompl-rrtconnect@B (B: gpu, cpu or fcl)
 //   --backend B: the backend of ours (default gpu)
 //   a planner whose first run takes more than --slow seconds (default 30) gets only
 //   --slow-runs runs (default 3); --budget S: no new run of a planner starts after it
@@ -25,6 +29,7 @@
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -32,6 +37,7 @@
 #include "gplanner/planner/checker_factory.h"
 #include "gplanner/planner/fcl_checker.h"
 #include "gplanner/planner/neighbor_finder.h"
+#include "gplanner/planner/ompl/motion_validator.h"
 #include "gplanner/planner/ompl/state_space.h"
 #include "gplanner/planner/ompl/state_validity_checker.h"
 #include "gplanner/planner/roadmap_planner.h"
@@ -59,12 +65,24 @@ void print(const gplanner::Scene& scene, const Run& run) {
             << std::endl;
 }
 
-Run run_ompl(const gplanner::Scene& scene, const std::string& name, double time_limit, int seed) {
+// OMPL's planner `name` (ompl-lazyprm, ompl-prm or ompl-rrtconnect). Without `plugin`:
+// as OMPL users run it, our FCL backend on the planning thread and OMPL's
+// DiscreteMotionValidator. With `plugin`: our validity checker and motion validator on
+// that checker, everything else the same.
+Run run_ompl(const gplanner::Scene& scene, const std::string& name, double time_limit, int seed,
+             gplanner::CollisionChecker* plugin) {
   gplanner::FclChecker fcl(scene, /*threads=*/1);
+  gplanner::CollisionChecker* checker_used = plugin ? plugin : &fcl;
   og::SimpleSetup setup(gplanner::ompl_adapters::make_state_space(scene));
   const ob::SpaceInformationPtr si = setup.getSpaceInformation();
-  auto checker = std::make_shared<gplanner::ompl_adapters::StateValidityChecker>(si, scene, &fcl);
+  auto checker =
+      std::make_shared<gplanner::ompl_adapters::StateValidityChecker>(si, scene, checker_used);
   setup.setStateValidityChecker(checker);
+  std::shared_ptr<gplanner::ompl_adapters::MotionValidator> motions;
+  if (plugin) {
+    motions = std::make_shared<gplanner::ompl_adapters::MotionValidator>(si, scene, plugin);
+    si->setMotionValidator(motions);
+  }
   ob::ScopedState<> start(si), goal(si);
   gplanner::ompl_adapters::row_to_state(scene, scene.start.data(), start.get());
   gplanner::ompl_adapters::row_to_state(scene, scene.goal.data(), goal.get());
@@ -77,7 +95,8 @@ Run run_ompl(const gplanner::Scene& scene, const std::string& name, double time_
     setup.setPlanner(std::make_shared<og::RRTConnect>(si));
   }
   setup.setup();
-  Run run{name, "fcl (1 thread)", seed};
+  Run run{plugin ? name + "@" + plugin->backend() : name,
+          plugin ? plugin->backend() + " (OMPL plugin)" : "fcl (1 thread)", seed};
   const ob::PlannerStatus status = setup.solve(time_limit);
   run.seconds = setup.getLastPlanComputationTime();
   run.solved = status == ob::PlannerStatus::EXACT_SOLUTION;
@@ -151,13 +170,35 @@ int main(int argc, char** argv) {
         gplanner::make_collision_checker(scene, backend);
     std::unique_ptr<gplanner::NeighborFinder> neighbors = gplanner::make_neighbor_finder(
         gplanner::make_metric(scene.space, scene.planner), checker->backend());
+    std::map<std::string, std::unique_ptr<gplanner::CollisionChecker>> plugins;
     for (const std::string& planner : planners) {
+      const std::size_t at = planner.find('@');
+      const std::string base = planner.substr(0, at);
+      if ((base != "ours-lazyprm" && base != "ours-prm" && base != "ompl-lazyprm" &&
+           base != "ompl-prm" && base != "ompl-rrtconnect") ||
+          (at != std::string::npos && base.rfind("ours-", 0) == 0)) {
+        std::cerr << "gplanner_plan_bench: unknown planner " << planner << "\n";
+        return 2;
+      }
+      if (at != std::string::npos && !plugins.count(planner.substr(at + 1))) {
+        std::string notice;
+        plugins[planner.substr(at + 1)] =
+            gplanner::make_collision_checker(scene, planner.substr(at + 1), {}, &notice);
+        if (!notice.empty()) std::cerr << "notice: " << notice << "\n";
+      }
+    }
+    for (const std::string& planner : planners) {
+      const std::size_t at = planner.find('@');
+      const std::string base = planner.substr(0, at);
+      gplanner::CollisionChecker* plugin =
+          at == std::string::npos ? nullptr : plugins.at(planner.substr(at + 1)).get();
       int planned = runs;
       double spent = 0;
       for (int seed = 1; seed <= planned && spent < budget; ++seed) {
-        const Run run = planner.rfind("ours-", 0) == 0 ? run_ours(scene, planner, time_limit, seed,
-                                                                  checker.get(), neighbors.get())
-                                                       : run_ompl(scene, planner, time_limit, seed);
+        const Run run =
+            base.rfind("ours-", 0) == 0
+                ? run_ours(scene, base, time_limit, seed, checker.get(), neighbors.get())
+                : run_ompl(scene, base, time_limit, seed, plugin);
         print(scene, run);
         spent += run.seconds;
         if (seed == 1 && run.seconds > slow) planned = std::min(planned, slow_runs);

@@ -712,6 +712,11 @@ SCENES = {
                  **arm_dict("l", L_OVER_TABLE)},
         "start_base": (0.0, 0.0, 0.0),
         "goal_base": (0.0, 0.0, 0.0),
+        # Uniform milestones with k = 15 rarely connect the arms' way out from under the
+        # table (lazy PRM on the GPU solved 5 of 10 seeds in 60 s): bridge-test milestones
+        # fill that slot and k = 30 joins them (10 of 10 seeds, median 4 s; bench/RESULTS.md).
+        "planner": ["  roadmap: {neighbors: 30}",
+                    "  sampler: {bridge_fraction: 0.5, bridge_sigma: 0.2}"],
     },
     "pr2_base_arm": {
         "description": (
@@ -795,6 +800,8 @@ def write_scene(path, name, sc):
             y.append("  base: {xy: [%s, %s], theta: %s}" % (num(bx), num(by), num(bt)))
         y.append("  joints:")
         y.append(jdict(sc[key], "    "))
+    if "planner" in sc:
+        y += ["planner:"] + sc["planner"]
     with open(path, "w") as f:
         f.write("\n".join(y) + "\n")
 

@@ -124,25 +124,34 @@ std::size_t RoadmapPlanner::add_milestones(std::size_t count, PlanResult* result
 }
 
 std::size_t RoadmapPlanner::connect(PlanResult* result) {
+  // The new milestones joined to their k nearest in chunks of kChunk, each chunk's among
+  // the milestones before it and itself (later ones join back to it), so that a stop or
+  // the time limit is seen between chunks: one k-NN call over millions of new milestones
+  // took tens of seconds past the limit. Rounds of up to kChunk new milestones are one call.
+  constexpr std::size_t kChunk = std::size_t(1) << 18;
   StageTimer timer(&result->times.knn);
   const std::size_t n = roadmap_.vertex_count();
-  const std::size_t first = std::min(connected_, n);
   const int k = options_.neighbors;
-  std::vector<int> nearest;
-  neighbors_->nearest_of_new(roadmap_.vertices().data(), n, first, k, &nearest);
-  connected_ = n;
   const ConfigurationMetric& metric = local_.metric();
+  std::vector<int> nearest;
   std::size_t added = 0;
-  for (std::size_t v = first; v < n; ++v) {
-    for (int j = 0; j < k; ++j) {
-      const int w = nearest[(v - first) * k + j];
-      if (w < 0) break;
-      const float length = configuration_distance(metric, roadmap_.vertex(v), roadmap_.vertex(w));
-      if (roadmap_.add_edge(static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(w), length) >=
-          0) {
-        ++added;
+  for (std::size_t first = std::min(connected_, n); first < n;) {
+    const std::size_t end = std::min(n, first + kChunk);
+    neighbors_->nearest_of_new(roadmap_.vertices().data(), end, first, k, &nearest);
+    for (std::size_t v = first; v < end; ++v) {
+      for (int j = 0; j < k; ++j) {
+        const int w = nearest[(v - first) * k + j];
+        if (w < 0) break;
+        const float length =
+            configuration_distance(metric, roadmap_.vertex(v), roadmap_.vertex(w));
+        if (roadmap_.add_edge(static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(w),
+                              length) >= 0) {
+          ++added;
+        }
       }
     }
+    connected_ = first = end;
+    if (first < n && out_of_time(result)) break;
   }
   return added;
 }

@@ -93,9 +93,9 @@ def print_plugin_against_fcl(runs, median, cell):
             elif gpu_bound and fcl_bound:
                 ratio = "both failed"
             elif gpu_bound:
-                ratio = "<%.1fx" % (fcl / gpu)
+                ratio = "<%.2gx" % (fcl / gpu)
             else:
-                ratio = "%s%.1fx" % (">" if fcl_bound else "", fcl / gpu)
+                ratio = "%s%.2gx" % (">" if fcl_bound else "", fcl / gpu)
             cells += [cell(scene, b), cell(scene, b + "@gpu"), ratio]
         print("| %s | %s |" % (scene, " | ".join(cells)))
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <utility>
 
@@ -87,14 +88,22 @@ bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t
   const ConfigurationSpace& space = scene_.space;
   const std::size_t width = space.width();
   stats_.motions += count;
+  // Each motion's samples in coarse-to-fine order, one order shared by every motion of
+  // the same segment count (a roadmap's millions of edges have few distinct counts).
+  // The stop is looked at every 65,536 motions here too: PRM hands over all its edges.
   std::vector<int> segment_count(count);
-  std::vector<std::vector<int>> order(count);
+  std::vector<const std::vector<int>*> order(count);
+  std::map<int, std::vector<int>> orders;  // by segment count; nodes never move
   std::size_t remaining = 0;
   for (std::size_t e = 0; e < count; ++e) {
+    if (e % 65536 == 0 && e > 0 && should_stop_ && should_stop_()) return false;
     invalid[e] = 0;
     segment_count[e] = segments(from + e * width, to + e * width);
-    order[e] = coarse_to_fine_order(segment_count[e]);
-    remaining += order[e].size();
+    auto it = orders.find(segment_count[e]);
+    if (it == orders.end())
+      it = orders.emplace(segment_count[e], coarse_to_fine_order(segment_count[e])).first;
+    order[e] = &it->second;
+    remaining += order[e]->size();
   }
   // next[e]: how many of motion e's samples have been checked.
   std::vector<std::size_t> next(count, 0);
@@ -106,10 +115,11 @@ bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t
     std::vector<std::pair<std::uint32_t, int>> picks;  // (motion, sample index)
     for (std::size_t e = 0; e < count; ++e) {
       if (invalid[e]) continue;
-      const std::size_t take =
-          all_at_once ? order[e].size() - next[e] : std::min(per_motion, order[e].size() - next[e]);
+      const std::vector<int>& samples_of_e = *order[e];
+      const std::size_t take = all_at_once ? samples_of_e.size() - next[e]
+                                           : std::min(per_motion, samples_of_e.size() - next[e]);
       for (std::size_t k = 0; k < take; ++k)
-        picks.emplace_back(static_cast<std::uint32_t>(e), order[e][next[e] + k]);
+        picks.emplace_back(static_cast<std::uint32_t>(e), samples_of_e[next[e] + k]);
       next[e] += take;
     }
     if (picks.empty()) break;
@@ -137,7 +147,7 @@ bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t
     }
     remaining = 0;
     for (std::size_t e = 0; e < count; ++e)
-      if (!invalid[e]) remaining += order[e].size() - next[e];
+      if (!invalid[e]) remaining += order[e]->size() - next[e];
     per_motion *= 2;
   }
   return true;

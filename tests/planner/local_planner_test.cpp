@@ -128,6 +128,32 @@ TEST(LocalPlanner, BatchedChecksEqualCheckingEverySampleArticulated) {
   expect_batched_equals_one_by_one("pr2_base_arm.yaml", 0.3);
 }
 
+// A stop ends a large call (a PRM round's every edge) before any sample is checked, and
+// it says so; the same call without the stop checks them.
+TEST(LocalPlanner, AStopEndsALargeCallBeforeAnySample) {
+  const Scene scene = load("piano.yaml");
+  CpuChecker checker(scene);
+  const int w = scene.space.width();
+  const std::size_t count = 200000;
+  std::vector<float> a(count * w), b(count * w);
+  std::mt19937_64 rng(3);
+  for (std::size_t i = 0; i < count; ++i) {
+    scene.space.sample_uniform(&rng, &a[i * w]);
+    scene.space.sample_uniform(&rng, &b[i * w]);
+  }
+  std::vector<std::uint8_t> invalid(count);
+  LocalPlanner stopped(scene, &checker);
+  int asked = 0;
+  stopped.set_stop([&asked] { return ++asked > 0; });
+  EXPECT_FALSE(stopped.check_motions(a.data(), b.data(), count, invalid.data()));
+  EXPECT_GT(asked, 0);
+  EXPECT_EQ(stopped.stats().samples, 0u);
+  LocalPlanner going(scene, &checker);
+  going.set_stop([] { return false; });
+  EXPECT_TRUE(going.check_motions(a.data(), b.data(), 1000, invalid.data()));
+  EXPECT_GT(going.stats().samples, 0u);
+}
+
 TEST(LocalPlanner, LastValidFractionStopsBeforeTheFirstCollision) {
   const Scene scene = load("piano.yaml");
   CpuChecker checker(scene);

@@ -208,11 +208,22 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       report("edges", result);
     }
     // Search; lazy PRM checks the unknown edges of each path found, until one is valid.
+    // The heuristic is every vertex's cost to the goal over this round's roadmap: edges
+    // only become invalid until the next round, so it stays a consistent lower bound, and
+    // each search after some edges fail explores only around them. Once the searches
+    // have expanded as many vertices as the roadmap holds it is computed again.
+    std::vector<double> to_goal;
+    std::size_t expanded = 0;
     while (!out_of_time(&result)) {
       GraphPath path;
       {
         StageTimer timer(&result.times.search);
-        path = shortest_path(roadmap_, local_.metric(), s, g, /*valid_edges_only=*/!lazy);
+        if (to_goal.empty() || expanded > roadmap_.vertex_count()) {
+          to_goal = cost_to_goal(roadmap_, g, /*valid_edges_only=*/!lazy);
+          expanded = 0;
+        }
+        path = shortest_path(roadmap_, to_goal, s, g, /*valid_edges_only=*/!lazy);
+        expanded += path.expanded;
       }
       if (path.vertices.empty()) break;
       std::vector<std::uint32_t> unknown;

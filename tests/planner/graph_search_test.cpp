@@ -1,9 +1,12 @@
-// A* over roadmaps against Dijkstra (no heuristic) on random geometric graphs.
+// A* over roadmaps against Dijkstra (no heuristic) on random geometric graphs, with the
+// metric heuristic and with a cost to the goal computed before edges became invalid.
 
 #include "gplanner/planner/graph_search.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <queue>
 #include <random>
@@ -35,48 +38,97 @@ double dijkstra(const Roadmap& roadmap, std::uint32_t s, std::uint32_t g, bool v
   return cost[g];
 }
 
+
+// A random geometric roadmap of 200 vertices and 800 edges in each state.
+Roadmap random_roadmap(const ConfigurationMetric& metric, std::mt19937* rng) {
+  std::uniform_real_distribution<float> coord(0, 10);
+  Roadmap roadmap(2);
+  for (int i = 0; i < 200; ++i) {
+    const float q[] = {coord(*rng), coord(*rng)};
+    roadmap.add_vertex(q);
+  }
+  std::uniform_int_distribution<std::uint32_t> pick(0, 199);
+  std::uniform_int_distribution<int> state(0, 2);
+  for (int e = 0; e < 800; ++e) {
+    const std::uint32_t a = pick(*rng), b = pick(*rng);
+    roadmap.add_edge(a, b, configuration_distance(metric, roadmap.vertex(a), roadmap.vertex(b)),
+                     static_cast<EdgeState>(state(*rng)));
+  }
+  return roadmap;
+}
+
+// The path is one of `roadmap` from 0 to 1 over usable edges, of length `expected`.
+void expect_shortest(const Roadmap& roadmap, const GraphPath& path, double expected,
+                     bool valid_only) {
+  if (std::isinf(expected)) {
+    EXPECT_TRUE(path.vertices.empty());
+    return;
+  }
+  ASSERT_FALSE(path.vertices.empty());
+  EXPECT_NEAR(path.length, expected, 1e-4 * expected);
+  EXPECT_EQ(path.vertices.front(), 0u);
+  EXPECT_EQ(path.vertices.back(), 1u);
+  ASSERT_EQ(path.edges.size() + 1, path.vertices.size());
+  double sum = 0;
+  for (std::size_t i = 0; i < path.edges.size(); ++i) {
+    const RoadmapEdge& e = roadmap.edge(path.edges[i]);
+    EXPECT_NE(e.state, EdgeState::kInvalid);
+    if (valid_only) EXPECT_EQ(e.state, EdgeState::kValid);
+    EXPECT_TRUE((e.a == path.vertices[i] && e.b == path.vertices[i + 1]) ||
+                (e.b == path.vertices[i] && e.a == path.vertices[i + 1]));
+    sum += e.length;
+  }
+  EXPECT_NEAR(sum, path.length, 1e-4 * expected);
+}
+
 TEST(GraphSearch, FindsTheShortestPathOverUsableEdges) {
   ConfigurationMetric metric;  // joints only: 2 of them
   metric.joint_count = 2;
   std::mt19937 rng(8);
-  std::uniform_real_distribution<float> coord(0, 10);
   for (int trial = 0; trial < 20; ++trial) {
-    Roadmap roadmap(2);
-    for (int i = 0; i < 200; ++i) {
-      const float q[] = {coord(rng), coord(rng)};
-      roadmap.add_vertex(q);
-    }
-    std::uniform_int_distribution<std::uint32_t> pick(0, 199);
-    std::uniform_int_distribution<int> state(0, 2);
-    for (int e = 0; e < 800; ++e) {
-      const std::uint32_t a = pick(rng), b = pick(rng);
-      roadmap.add_edge(a, b, configuration_distance(metric, roadmap.vertex(a), roadmap.vertex(b)),
-                       static_cast<EdgeState>(state(rng)));
-    }
+    const Roadmap roadmap = random_roadmap(metric, &rng);
     for (const bool valid_only : {false, true}) {
-      const double expected = dijkstra(roadmap, 0, 1, valid_only);
-      const GraphPath path = shortest_path(roadmap, metric, 0, 1, valid_only);
-      if (std::isinf(expected)) {
-        EXPECT_TRUE(path.vertices.empty());
-        continue;
-      }
-      ASSERT_FALSE(path.vertices.empty());
-      EXPECT_NEAR(path.length, expected, 1e-4 * expected);
-      EXPECT_EQ(path.vertices.front(), 0u);
-      EXPECT_EQ(path.vertices.back(), 1u);
-      ASSERT_EQ(path.edges.size() + 1, path.vertices.size());
-      double sum = 0;
-      for (std::size_t i = 0; i < path.edges.size(); ++i) {
-        const RoadmapEdge& e = roadmap.edge(path.edges[i]);
-        EXPECT_NE(e.state, EdgeState::kInvalid);
-        if (valid_only) EXPECT_EQ(e.state, EdgeState::kValid);
-        EXPECT_TRUE((e.a == path.vertices[i] && e.b == path.vertices[i + 1]) ||
-                    (e.b == path.vertices[i] && e.a == path.vertices[i + 1]));
-        sum += e.length;
-      }
-      EXPECT_NEAR(sum, path.length, 1e-4 * expected);
+      expect_shortest(roadmap, shortest_path(roadmap, metric, 0, 1, valid_only),
+                      dijkstra(roadmap, 0, 1, valid_only), valid_only);
     }
   }
+}
+
+// The cost to the goal is every vertex's Dijkstra distance; computed once and kept while
+// edges turn invalid (as the lazy search keeps it), it still leads A* to shortest paths,
+// expanding fewer vertices than the metric heuristic.
+TEST(GraphSearch, CostToGoalStaysAHeuristicWhileEdgesTurnInvalid) {
+  ConfigurationMetric metric;
+  metric.joint_count = 2;
+  std::mt19937 rng(9);
+  std::size_t expanded_metric = 0, expanded_cost = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    Roadmap roadmap = random_roadmap(metric, &rng);
+    for (const bool valid_only : {false, true}) {
+      const std::vector<double> to_goal = cost_to_goal(roadmap, 1, valid_only);
+      ASSERT_EQ(to_goal.size(), roadmap.vertex_count());
+      for (std::uint32_t v = 0; v < roadmap.vertex_count(); v += 17) {
+        const double d = dijkstra(roadmap, v, 1, valid_only);
+        if (std::isinf(d)) {
+          EXPECT_TRUE(std::isinf(to_goal[v]));
+        } else {
+          EXPECT_NEAR(to_goal[v], d, 1e-4 * std::max(d, 1.0));
+        }
+      }
+      // Edges of each path found turn invalid, one at a time, as lazy PRM finds them.
+      Roadmap losing = roadmap;
+      for (int round = 0; round < 30; ++round) {
+        const GraphPath path = shortest_path(losing, to_goal, 0, 1, valid_only);
+        expect_shortest(losing, path, dijkstra(losing, 0, 1, valid_only), valid_only);
+        const GraphPath plain = shortest_path(losing, metric, 0, 1, valid_only);
+        expanded_cost += path.expanded;
+        expanded_metric += plain.expanded;
+        if (path.edges.empty()) break;
+        losing.edge(path.edges[path.edges.size() / 2]).state = EdgeState::kInvalid;
+      }
+    }
+  }
+  EXPECT_LT(expanded_cost, expanded_metric);
 }
 
 }  // namespace

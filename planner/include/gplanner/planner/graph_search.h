@@ -1,8 +1,12 @@
 #pragma once
-// A* over a roadmap's edges, skipping invalid ones (and, when asked, unknown ones), with
-// the metric distance to the goal as the heuristic (admissible: an edge's length is
-// the metric distance between its ends).
+// A* over a roadmap's edges, skipping invalid ones (and, when asked, unknown ones). The
+// heuristic is either the metric distance to the goal (admissible: an edge's length is
+// the metric distance between its ends) or a cost to the goal computed over the roadmap
+// itself (cost_to_goal), which stays a lower bound while edges only become invalid and
+// lets a lazy search go straight to the next best path instead of searching the whole
+// roadmap again.
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -15,9 +19,23 @@ struct GraphPath {
   std::vector<std::uint32_t> vertices;  // start ... goal; empty when none exists
   std::vector<std::uint32_t> edges;     // edges[i] joins vertices[i] and vertices[i + 1]
   double length = 0;
+  std::size_t expanded = 0;  // vertices the search expanded
 };
 
 GraphPath shortest_path(const Roadmap& roadmap, const ConfigurationMetric& metric,
                         std::uint32_t start, std::uint32_t goal, bool valid_edges_only);
+
+// to_goal[v]: a lower bound on v's cost to the goal over the usable edges, consistent
+// (to_goal[v] <= length(v, w) + to_goal[w] for every usable edge), infinity where v
+// cannot reach the goal; shape [roadmap.vertex_count()].
+GraphPath shortest_path(const Roadmap& roadmap, const std::vector<double>& to_goal,
+                        std::uint32_t start, std::uint32_t goal, bool valid_edges_only);
+
+// Every vertex's least cost to `goal` over the usable edges (Dijkstra from the goal),
+// infinity where it cannot reach it. While edges only change from unknown to valid or
+// invalid it remains a consistent lower bound for shortest_path; after vertices or
+// edges are added it must be computed again.
+std::vector<double> cost_to_goal(const Roadmap& roadmap, std::uint32_t goal,
+                                 bool valid_edges_only);
 
 }  // namespace gplanner

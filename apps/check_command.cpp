@@ -106,6 +106,14 @@ int run_check(int argc, char** argv) {
     throw UsageError("--traversal: '" + args.text("traversal", "") +
                      "' is not one of basic, packet, balanced");
   }
+  // The GPU's settings change nothing on the other backends: say so rather than ignore
+  // them (a memory cap meant to be tested would go untested).
+  for (const char* gpu_only : {"traversal", "memory-cap-mb"}) {
+    if (args.has(gpu_only) && backend != "gpu" && compare != "gpu") {
+      throw UsageError(std::string("--") + gpu_only +
+                       " applies to the gpu backend only; add --backend gpu or --compare gpu");
+    }
+  }
 
   // Refuse an output file that cannot be written before doing the work, not after.
   const std::string out = args.text("out", "");

@@ -49,6 +49,8 @@ int run_plan(int argc, char** argv) {
     throw UsageError("--traversal: '" + args.text("traversal", "") +
                      "' is not one of basic, packet, balanced");
   }
+  if (args.has("traversal") && backend != "gpu")
+    throw UsageError("--traversal applies to the gpu backend only; add --backend gpu");
   const std::string out = args.text("out", "");
   const std::string save = args.text("save-roadmap", "");
   const std::string load = args.text("load-roadmap", "");

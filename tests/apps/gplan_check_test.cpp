@@ -257,6 +257,20 @@ TEST_F(GplanCheck, RepeatReportsTheMedianAndTheSameVerdicts) {
   EXPECT_NE(none.output.find("--repeat"), std::string::npos) << none.output;
 }
 
+TEST_F(GplanCheck, GpuSettingsWithoutTheGpuAreAUsageError) {
+  for (const std::string arguments :
+       {"--n 10 --backend cpu --memory-cap-mb 1", "--n 10 --traversal basic",
+        "--n 10 --backend fcl --compare cpu --traversal packet"}) {
+    const CommandResult run = check(arguments);
+    EXPECT_EQ(run.exit_code, 2) << arguments << "\n" << run.output;
+    EXPECT_NE(run.output.find("applies to the gpu backend only"), std::string::npos)
+        << arguments << "\n" << run.output;
+  }
+  // With the gpu backend (the cpu where there is none) they are taken.
+  const CommandResult gpu = check("--n 10 --backend gpu --traversal basic --memory-cap-mb 1");
+  EXPECT_EQ(gpu.exit_code, 0) << gpu.output;
+}
+
 TEST_F(GplanCheck, MissingOrExtraSceneIsAUsageError) {
   for (const std::string& arguments :
        {std::string("check"), "check " + shell_quoted(scene_) + " x"}) {

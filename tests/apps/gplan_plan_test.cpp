@@ -131,6 +131,7 @@ TEST(GplanPlan, UsageErrorsNameTheOption) {
            {"--out /no/such/folder/p.yaml", "--out"},
            {"--picture /no/such/folder/p.svg", "--picture"},
            {"--load-roadmap /no/such/file", "--load-roadmap"},
+           {"--backend cpu --traversal basic", "--traversal applies to the gpu backend only"},
            {"--bogus 1", "--bogus"}}) {
     const CommandResult run = run_gplan("plan " + scene + " " + arguments);
     EXPECT_EQ(run.exit_code, 2) << arguments << "\n" << run.output;

@@ -1,7 +1,9 @@
 #pragma once
 // Nearest neighbours of new roadmap milestones under the planner's metric: on the GPU
 // (knn_gpu, every milestone's neighbours at once) when the planner runs the gpu backend
-// and a GPU is there, otherwise OMPL's GNAT on the CPU, grown as milestones come.
+// and a GPU is there, otherwise on the CPU: OMPL's GNAT, grown as milestones come, for
+// rigid bodies (6 degrees of freedom or fewer), exact brute force on all threads for
+// more, where GNAT's pruning fails (measured: neighbor_finder.cpp).
 
 #include <memory>
 #include <string>

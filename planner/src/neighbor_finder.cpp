@@ -9,10 +9,24 @@
 namespace gplanner {
 namespace {
 
+// Writes to `row` (k wide, -1 filled) the first k of `count` candidates (nearest first;
+// a negative index ends them) other than the point `self`, which a search among all the
+// points finds too.
+template <class Index>
+void write_others(const Index* candidates, std::size_t count, std::size_t self, int k,
+                  int* row) {
+  int rank = 0;
+  for (std::size_t j = 0; j < count && rank < k; ++j) {
+    const long long c = static_cast<long long>(candidates[j]);
+    if (c < 0) break;
+    if (static_cast<std::size_t>(c) != self) row[rank++] = static_cast<int>(c);
+  }
+}
+
 // OMPL's GNAT over point indices, the points read from the caller's array at each call.
-class CpuNeighborFinder : public NeighborFinder {
+class GnatNeighborFinder : public NeighborFinder {
  public:
-  explicit CpuNeighborFinder(const ConfigurationMetric& metric) : metric_(metric) { reset(); }
+  explicit GnatNeighborFinder(const ConfigurationMetric& metric) : metric_(metric) { reset(); }
   std::string device() const override { return "cpu"; }
 
   void nearest_of_new(const float* points, std::size_t n, std::size_t first_new, int k,
@@ -25,11 +39,7 @@ class CpuNeighborFinder : public NeighborFinder {
     std::vector<std::uint32_t> found;
     for (std::size_t i = first_new; i < n; ++i) {
       tree_->nearestK(static_cast<std::uint32_t>(i), k + 1, found);
-      int rank = 0;
-      for (const std::uint32_t j : found) {
-        if (j == i || rank == k) continue;
-        (*indices)[(i - first_new) * k + rank++] = static_cast<int>(j);
-      }
+      write_others(found.data(), found.size(), i, k, &(*indices)[(i - first_new) * k]);
     }
   }
 
@@ -65,13 +75,7 @@ class BruteForceNeighborFinder : public NeighborFinder {
     const NeighborTable table =
         nearest_neighbors_cpu(metric_, points, n, points + first_new * metric_.width(), m, k + 1);
     for (std::size_t q = 0; q < m; ++q) {
-      int rank = 0;
-      for (int j = 0; j <= k && rank < k; ++j) {
-        const int w = table.indices[q * (k + 1) + j];
-        if (w < 0) break;
-        if (static_cast<std::size_t>(w) == first_new + q) continue;
-        (*indices)[q * k + rank++] = w;
-      }
+      write_others(&table.indices[q * (k + 1)], k + 1, first_new + q, k, &(*indices)[q * k]);
     }
   }
 
@@ -123,7 +127,7 @@ std::unique_ptr<NeighborFinder> make_neighbor_finder(const ConfigurationMetric& 
   }
   if (degrees_of_freedom(metric) > kBruteForceAboveDof)
     return std::make_unique<BruteForceNeighborFinder>(metric);
-  return std::make_unique<CpuNeighborFinder>(metric);
+  return std::make_unique<GnatNeighborFinder>(metric);
 }
 
 }  // namespace gplanner

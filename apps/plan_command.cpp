@@ -150,6 +150,8 @@ int run_plan(int argc, char** argv) {
               << ",\"edges\":" << result.edges << ",\"edges_checked\":" << result.edges_checked
               << ",\"states_checked\":" << result.states_checked
               << ",\"samples_checked\":" << result.samples_checked
+              << ",\"searches\":" << result.searches
+              << ",\"edge_batches\":" << result.edge_batches
               << ",\"rounds\":" << result.rounds << ",\"seconds\":" << t.total
               << ",\"times\":{\"sampling\":" << t.sampling << ",\"state_checks\":" << t.state_checks
               << ",\"knn\":" << t.knn << ",\"search\":" << t.search

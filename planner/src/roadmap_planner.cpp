@@ -57,6 +57,7 @@ PlanOptions plan_options(const Scene& scene) {
   options.time_limit_s = s.number("time_limit_s");
   options.milestones = static_cast<std::size_t>(s.number("roadmap.milestones"));
   options.neighbors = static_cast<int>(s.number("roadmap.neighbors"));
+  options.lazy_batch_paths = static_cast<int>(s.number("roadmap.lazy_batch_paths"));
   options.shortcut_rounds = static_cast<int>(s.number("shortcut.rounds"));
   options.shortcut_candidates = static_cast<int>(s.number("shortcut.candidates"));
   options.local.resolution_fraction = s.number("edge_resolution");
@@ -156,6 +157,58 @@ std::size_t RoadmapPlanner::connect(PlanResult* result) {
   return added;
 }
 
+std::vector<std::uint32_t> RoadmapPlanner::unknown_edges(const GraphPath& path) const {
+  std::vector<std::uint32_t> unknown;
+  for (const std::uint32_t e : path.edges)
+    if (roadmap_.edge(e).state == EdgeState::kUnknown) unknown.push_back(e);
+  return unknown;
+}
+
+void RoadmapPlanner::add_next_paths(const std::vector<double>& to_goal, std::uint32_t s,
+                                    std::uint32_t g, std::size_t shortest_vertices,
+                                    std::vector<std::uint32_t>* batch, PlanResult* result) {
+  // The batch's edges are set aside (marked invalid) while the next path is searched,
+  // whose unknown edges join the batch, and so on; then they are unknown again. Setting
+  // edges aside only lengthens ways to the goal, so to_goal stays a consistent lower
+  // bound. The shortest valid path is found all the same: the batch only makes more
+  // unknown edges known. Stops at a path with no unknown edge (a valid way no longer
+  // than any later one), once the batch's samples would fill one checker call, or at a
+  // search that expands more than kSpeculation times what the shortest path's did (at
+  // least kMinSpeculation vertices): with the batch set aside the search may have to go
+  // around much of the roadmap, which costs more than the checker call it saves. (Their
+  // expansions do not count towards recomputing to_goal: they say how far the batch is
+  // set aside, not how stale to_goal has become.)
+  constexpr std::size_t kSpeculation = 32, kMinSpeculation = 1024;
+  if (options_.lazy_batch_paths <= 1) return;
+  const std::size_t max_expanded = std::max(kMinSpeculation, kSpeculation * shortest_vertices);
+  const std::size_t sample_budget = options_.local.one_batch_samples;
+  auto samples_of = [&](const std::vector<std::uint32_t>& edges) {
+    std::size_t samples = 0;
+    for (const std::uint32_t e : edges) {
+      const RoadmapEdge& edge = roadmap_.edge(e);
+      samples += local_.segments(roadmap_.vertex(edge.a), roadmap_.vertex(edge.b)) - 1;
+    }
+    return samples;
+  };
+  std::size_t samples = samples_of(*batch);
+  for (const std::uint32_t e : *batch) roadmap_.edge(e).state = EdgeState::kInvalid;
+  for (int p = 1; p < options_.lazy_batch_paths; ++p) {
+    const GraphPath next =
+        shortest_path(roadmap_, to_goal, s, g, /*valid_edges_only=*/false, max_expanded);
+    ++result->searches;
+    if (next.vertices.empty()) break;
+    const std::vector<std::uint32_t> unknown = unknown_edges(next);
+    if (unknown.empty()) break;
+    samples += samples_of(unknown);
+    if (samples > sample_budget) break;
+    for (const std::uint32_t e : unknown) {
+      roadmap_.edge(e).state = EdgeState::kInvalid;
+      batch->push_back(e);
+    }
+  }
+  for (const std::uint32_t e : *batch) roadmap_.edge(e).state = EdgeState::kUnknown;
+}
+
 void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result) {
   if (edges.empty()) return;
   StageTimer timer(&result->times.edge_checks);
@@ -223,13 +276,16 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
           expanded = 0;
         }
         path = shortest_path(roadmap_, to_goal, s, g, /*valid_edges_only=*/!lazy);
+        ++result.searches;
         expanded += path.expanded;
       }
       if (path.vertices.empty()) break;
-      std::vector<std::uint32_t> unknown;
-      for (const std::uint32_t e : path.edges)
-        if (roadmap_.edge(e).state == EdgeState::kUnknown) unknown.push_back(e);
+      std::vector<std::uint32_t> unknown = unknown_edges(path);
       if (!unknown.empty()) {
+        {
+          StageTimer timer(&result.times.search);
+          add_next_paths(to_goal, s, g, path.vertices.size(), &unknown, &result);
+        }
         check_edges(unknown, &result);
         report("edges", result);
         continue;
@@ -284,6 +340,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     }
   }
   result.samples_checked = local_.stats().samples;
+  result.edge_batches = local_.stats().batches + fine.stats().batches;
   result.times.total = elapsed();
   return result;
 }

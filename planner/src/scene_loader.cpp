@@ -612,6 +612,8 @@ Scene load_scene(const std::string& path) {
         {"max_displacement", 0, 1e9, false, false, "must be 0 (off) or a distance in metres"},
         {"roadmap.milestones", 1, 1e8, false, true, "must be a whole number from 1 to 1e8"},
         {"roadmap.neighbors", 1, 64, false, true, "must be a whole number from 1 to 64"},
+        {"roadmap.lazy_batch_paths", 1, 4096, false, true,
+         "must be a whole number from 1 to 4096"},
         {"shortcut.rounds", 0, 1000, false, true, "must be a whole number from 0 to 1000"},
         {"shortcut.candidates", 1, 1e6, false, true, "must be a whole number from 1 to 1e6"},
         {"sampler.rotation_spread", 0, 1e9, false, false,

@@ -39,17 +39,18 @@ double dijkstra(const Roadmap& roadmap, std::uint32_t s, std::uint32_t g, bool v
 }
 
 
-// A random geometric roadmap of 200 vertices and 800 edges in each state.
-Roadmap random_roadmap(const ConfigurationMetric& metric, std::mt19937* rng) {
+// A random geometric roadmap of `vertices` vertices and 4 times as many edges in each state.
+Roadmap random_roadmap(const ConfigurationMetric& metric, std::mt19937* rng,
+                       std::uint32_t vertices = 200) {
   std::uniform_real_distribution<float> coord(0, 10);
   Roadmap roadmap(2);
-  for (int i = 0; i < 200; ++i) {
+  for (std::uint32_t i = 0; i < vertices; ++i) {
     const float q[] = {coord(*rng), coord(*rng)};
     roadmap.add_vertex(q);
   }
-  std::uniform_int_distribution<std::uint32_t> pick(0, 199);
+  std::uniform_int_distribution<std::uint32_t> pick(0, vertices - 1);
   std::uniform_int_distribution<int> state(0, 2);
-  for (int e = 0; e < 800; ++e) {
+  for (std::uint32_t e = 0; e < 4 * vertices; ++e) {
     const std::uint32_t a = pick(*rng), b = pick(*rng);
     roadmap.add_edge(a, b, configuration_distance(metric, roadmap.vertex(a), roadmap.vertex(b)),
                      static_cast<EdgeState>(state(*rng)));
@@ -92,6 +93,53 @@ TEST(GraphSearch, FindsTheShortestPathOverUsableEdges) {
                       dijkstra(roadmap, 0, 1, valid_only), valid_only);
     }
   }
+}
+
+// Searches reuse their arrays from one call to the next: roadmaps of changing sizes,
+// searched in turn, still give Dijkstra's lengths.
+TEST(GraphSearch, SearchesOfRoadmapsOfChangingSizesStayExact) {
+  ConfigurationMetric metric;
+  metric.joint_count = 2;
+  std::mt19937 rng(10);
+  for (const std::uint32_t size : {50u, 2000u, 200u, 7u, 1000u}) {
+    const Roadmap roadmap = random_roadmap(metric, &rng, size);
+    for (const bool valid_only : {false, true}) {
+      const std::vector<double> to_goal = cost_to_goal(roadmap, 1, valid_only);
+      const double expected = dijkstra(roadmap, 0, 1, valid_only);
+      expect_shortest(roadmap, shortest_path(roadmap, metric, 0, 1, valid_only), expected,
+                      valid_only);
+      expect_shortest(roadmap, shortest_path(roadmap, to_goal, 0, 1, valid_only), expected,
+                      valid_only);
+    }
+  }
+}
+
+// A search bounded by max_expanded gives up (an empty path, gave_up) when it would need
+// more, and finds the same path when it needs no more.
+TEST(GraphSearch, GivesUpAfterMaxExpanded) {
+  ConfigurationMetric metric;
+  metric.joint_count = 2;
+  std::mt19937 rng(11);
+  int gave_up = 0, found = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    const Roadmap roadmap = random_roadmap(metric, &rng);
+    // A heuristic that guides nothing: the search expands much of the roadmap.
+    const std::vector<double> zero(roadmap.vertex_count(), 0.0);
+    const GraphPath full = shortest_path(roadmap, zero, 0, 1, false);
+    EXPECT_FALSE(full.gave_up);
+    if (full.vertices.empty() || full.expanded < 3) continue;
+    const GraphPath cut = shortest_path(roadmap, zero, 0, 1, false, full.expanded - 1);
+    EXPECT_TRUE(cut.gave_up);
+    EXPECT_TRUE(cut.vertices.empty());
+    EXPECT_EQ(cut.expanded, full.expanded - 1);
+    ++gave_up;
+    const GraphPath enough = shortest_path(roadmap, zero, 0, 1, false, full.expanded);
+    EXPECT_FALSE(enough.gave_up);
+    EXPECT_EQ(enough.vertices, full.vertices);
+    ++found;
+  }
+  EXPECT_GT(gave_up, 5);
+  EXPECT_EQ(found, gave_up);
 }
 
 // The cost to the goal is every vertex's Dijkstra distance; computed once and kept while

@@ -51,6 +51,35 @@ TEST(RoadmapPlanner, LazyPrmFindsAFreePathAndShortensIt) {
                                     result.times.edge_checks + result.times.shortcutting);
 }
 
+// Checking the next shortest paths' edges in the same batch finds the path of the same
+// length (the shortest valid one in the roadmap) in far fewer checker calls.
+TEST(RoadmapPlanner, LazyPrmBatchesTheNextShortestPaths) {
+  Planning p("humanoid.yaml");
+  PlanOptions options = plan_options(p.scene);
+  options.seed = 3;
+  options.shortcut_rounds = 0;
+  ASSERT_GT(options.lazy_batch_paths, 1);
+  PlanOptions one_path = options;
+  one_path.lazy_batch_paths = 1;
+  PlanResult results[2];
+  for (int i = 0; i < 2; ++i) {
+    RoadmapPlanner planner(p.scene, &p.checker, p.neighbors.get(), RoadmapStrategy::kLazyPrm,
+                           i == 0 ? one_path : options);
+    results[i] = planner.solve(p.scene.start.data(), p.scene.goal.data());
+    ASSERT_TRUE(results[i].solved) << results[i].stop_reason;
+    EXPECT_EQ(testing::path_problem(p.scene, results[i].path), "");
+  }
+  const PlanResult &single = results[0], &batched = results[1];
+  EXPECT_EQ(single.rounds, batched.rounds);
+  EXPECT_NEAR(batched.length, single.length, 1e-6 * single.length);
+  EXPECT_GE(batched.edges_checked, single.edges_checked);
+  EXPECT_GT(batched.searches, 0u);
+  // One batch per search, and the fine re-check, without batching; a few with it.
+  EXPECT_GE(single.edge_batches, single.searches - single.rounds);
+  EXPECT_LT(batched.edge_batches * 4, single.edge_batches)
+      << batched.edge_batches << " against " << single.edge_batches;
+}
+
 TEST(RoadmapPlanner, PrmChecksEveryEdgeAndFindsAFreePath) {
   Planning p("pr2_base_arm.yaml");
   const PlanResult result = p.plan(RoadmapStrategy::kPrm, 2, 300, 250);

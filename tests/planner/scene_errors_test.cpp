@@ -362,6 +362,8 @@ TEST_F(SceneErrors, PlannerSettingOutOfRange) {
       {"edge_resolution: 1.5\n", "edge_resolution: 1.5", "planner.edge_resolution", "(0, 1]"},
       {"max_displacement: -0.1\n", "max_displacement: -0.1", "planner.max_displacement", "0"},
       {"roadmap: {neighbors: 100}\n", "neighbors: 100", "planner.roadmap.neighbors", "1 to 64"},
+      {"roadmap: {lazy_batch_paths: 0}\n", "lazy_batch_paths: 0",
+       "planner.roadmap.lazy_batch_paths", "1 to 4096"},
       {"roadmap:\n    milestones: 2.5\n", "milestones: 2.5", "planner.roadmap.milestones",
        "whole number"},
       {"shortcut: {rounds: -1}\n", "rounds: -1", "planner.shortcut.rounds", "whole number"},

@@ -20,6 +20,7 @@ struct GraphPath {
   std::vector<std::uint32_t> edges;     // edges[i] joins vertices[i] and vertices[i + 1]
   double length = 0;
   std::size_t expanded = 0;  // vertices the search expanded
+  bool gave_up = false;      // stopped after max_expanded expansions (vertices empty)
 };
 
 GraphPath shortest_path(const Roadmap& roadmap, const ConfigurationMetric& metric,
@@ -28,8 +29,10 @@ GraphPath shortest_path(const Roadmap& roadmap, const ConfigurationMetric& metri
 // to_goal[v]: a lower bound on v's cost to the goal over the usable edges, consistent
 // (to_goal[v] <= length(v, w) + to_goal[w] for every usable edge), infinity where v
 // cannot reach the goal; shape [roadmap.vertex_count()].
+// Gives up (an empty path, gave_up set) once it has expanded max_expanded vertices.
 GraphPath shortest_path(const Roadmap& roadmap, const std::vector<double>& to_goal,
-                        std::uint32_t start, std::uint32_t goal, bool valid_edges_only);
+                        std::uint32_t start, std::uint32_t goal, bool valid_edges_only,
+                        std::size_t max_expanded = ~std::size_t(0));
 
 // Every vertex's least cost to `goal` over the usable edges (Dijkstra from the goal),
 // infinity where it cannot reach it. While edges only change from unknown to valid or

@@ -37,6 +37,9 @@ struct PlanOptions {
   double time_limit_s = 30;
   std::size_t milestones = 2000;  // free ones the first round adds; later rounds double the roadmap
   int neighbors = 15;             // k
+  // Lazy PRM: one batch checks the unknown edges of the shortest path and of up to this
+  // many - 1 next shortest ones (1: the shortest path's only).
+  int lazy_batch_paths = 16;
   int shortcut_rounds = 6;
   int shortcut_candidates = 256;
   // The found path is re-checked at the edge resolution divided by this (1: not at all)
@@ -66,6 +69,8 @@ struct PlanResult {
   std::size_t edges_checked = 0;
   std::size_t states_checked = 0;
   std::size_t samples_checked = 0;  // edge samples
+  std::size_t searches = 0;         // graph searches
+  std::size_t edge_batches = 0;     // checker calls for edges, shortcuts and the fine re-check
   std::string stop_reason;          // "solved", "time limit", "stopped"
 };
 

@@ -4,8 +4,9 @@
 // (GPU k-NN), and then
 // - PRM (multi-query) checks every new edge in one batch and searches the valid ones;
 // - lazy PRM (single query) searches all edges not known invalid, checks every
-//   unchecked edge of the found path in one batch, drops the invalid ones and searches
-//   again, until a path is valid or none is left (then the roadmap grows).
+//   unchecked edge of the found path, and of the next shortest paths found with those
+//   edges set aside, in one batch, drops the invalid ones and searches again, until a
+//   path is valid or none is left (then the roadmap grows).
 // The found path is shortcut with batched checks and re-checked at a finer resolution.
 // Seeded and deterministic for a given seed (with a deterministic checker).
 
@@ -16,6 +17,7 @@
 #include <unordered_set>
 
 #include "gplanner/planner/collision_checker.h"
+#include "gplanner/planner/graph_search.h"
 #include "gplanner/planner/local_planner.h"
 #include "gplanner/planner/milestone_sampler.h"
 #include "gplanner/planner/neighbor_finder.h"
@@ -60,6 +62,14 @@ class RoadmapPlanner {
   std::size_t add_milestones(std::size_t count, PlanResult* result);
   std::size_t connect(PlanResult* result);
   void check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result);
+  // The path's edges whose state is unknown.
+  std::vector<std::uint32_t> unknown_edges(const GraphPath& path) const;
+  // Lazy PRM: adds to `batch` (the shortest path's unknown edges) those of the next
+  // shortest paths, up to options_.lazy_batch_paths paths in all; shortest_expanded:
+  // the vertices the shortest path's search expanded.
+  void add_next_paths(const std::vector<double>& to_goal, std::uint32_t s, std::uint32_t g,
+                      std::size_t shortest_expanded, std::vector<std::uint32_t>* batch,
+                      PlanResult* result);
   bool out_of_time(PlanResult* result) const;
   void report(const char* stage, const PlanResult& result) const;
   double elapsed() const;

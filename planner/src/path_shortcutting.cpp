@@ -50,8 +50,19 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
       std::copy_n(&(*path)[pairs[p].first * width], width, &from[p * width]);
       std::copy_n(&(*path)[pairs[p].second * width], width, &to[p * width]);
     }
+    // Where calls cost more than samples (the GPU), every shortcut is checked at the fine
+    // resolution at once when that adds fewer samples than a call costs and fits one
+    // call: one call instead of two or more.
+    std::size_t coarse_samples = 0, fine_samples = 0;
+    for (std::size_t p = 0; p < pairs.size(); ++p) {
+      coarse_samples += local->segments(&from[p * width], &to[p * width]) - 1;
+      fine_samples += fine->segments(&from[p * width], &to[p * width]) - 1;
+    }
+    const bool fine_at_once = fine_samples <= fine->one_batch_samples() &&
+                              fine_samples < coarse_samples + local->configurations_per_call_cost();
     std::vector<std::uint8_t> invalid(pairs.size());
-    if (!local->check_motions(from.data(), to.data(), pairs.size(), invalid.data())) break;
+    LocalPlanner* first = fine_at_once ? fine : local;
+    if (!first->check_motions(from.data(), to.data(), pairs.size(), invalid.data())) break;
     auto d = [&](std::size_t i, std::size_t j) {
       return static_cast<double>(
           configuration_distance(metric, &(*path)[i * width], &(*path)[j * width]));
@@ -59,7 +70,7 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
     // Shortest way through the waypoints in order, over the path's own segments and the
     // shortcuts valid so far; the shortcuts it takes are checked again at the fine
     // resolution, and those failing drop out, until the way holds only certified ones.
-    std::vector<std::uint8_t> certified(pairs.size(), 0);
+    std::vector<std::uint8_t> certified(pairs.size(), fine_at_once ? 1 : 0);
     std::vector<std::size_t> parent(m, 0), via(m, kNone);
     while (true) {
       std::vector<std::vector<std::size_t>> into(m);  // valid shortcuts ending at j

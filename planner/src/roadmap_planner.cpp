@@ -139,6 +139,7 @@ std::size_t RoadmapPlanner::connect(PlanResult* result) {
   for (std::size_t first = std::min(connected_, n); first < n;) {
     const std::size_t end = std::min(n, first + kChunk);
     neighbors_->nearest_of_new(roadmap_.vertices().data(), end, first, k, &nearest);
+    roadmap_.reserve_edges(roadmap_.edge_count() + (end - first) * k);
     for (std::size_t v = first; v < end; ++v) {
       for (int j = 0; j < k; ++j) {
         const int w = nearest[(v - first) * k + j];

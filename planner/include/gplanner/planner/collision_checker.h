@@ -27,6 +27,11 @@ class CollisionChecker {
   // on every backend: never free, and no exception in the middle of a batch.
   virtual void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) = 0;
 
+  // About how many configurations cost as much to check as one call costs by itself:
+  // callers that can check more configurations in fewer calls do so while the extra
+  // configurations number fewer than this. 0 for the CPU backends (a call costs little
+  // beside its configurations).
+  virtual std::size_t configurations_per_call_cost() const { return 0; }
   bool in_collision(const float* configuration) {
     std::uint8_t verdict = 0;
     check(configuration, 1, &verdict);

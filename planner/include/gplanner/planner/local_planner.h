@@ -69,6 +69,12 @@ class LocalPlanner {
   // collision (0 when the first sample collides), or 1 when all are free.
   double last_valid_fraction(const float* a, const float* b);
 
+  // The checker's configurations_per_call_cost(), and the one-batch limit above.
+  std::size_t configurations_per_call_cost() const {
+    return checker_->configurations_per_call_cost();
+  }
+  std::size_t one_batch_samples() const { return options_.one_batch_samples; }
+
   const MotionCheckStats& stats() const { return stats_; }
   void reset_stats() { stats_ = {}; }
   const ConfigurationMetric& metric() const { return metric_; }

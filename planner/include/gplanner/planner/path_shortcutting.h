@@ -4,8 +4,10 @@
 // shortest path through the valid ones (a shortest path over the waypoints in order),
 // whose shortcuts are checked again with `fine` (dropping those that fail, until the
 // path holds only shortcuts both passed); then puts a midpoint into every segment so
-// that the next round can cut corners closer. A path valid at fine's resolution stays
-// so. Stops, with the path as it is, when `local`'s stop condition says so.
+// that the next round can cut corners closer. Where the checker's calls cost more than
+// the extra samples (the GPU), a round checks every shortcut with `fine` alone, in one
+// call. A path valid at fine's resolution stays so. Stops, with the path as it is, when
+// `local`'s stop condition says so.
 
 #include <random>
 #include <vector>

@@ -42,6 +42,11 @@ class Roadmap {
   long long add_edge(std::uint32_t a, std::uint32_t b, float length,
                      EdgeState state = EdgeState::kUnknown);
   long long find_edge(std::uint32_t a, std::uint32_t b) const;
+  // Room for this many edges in all, so that adding them does not rehash the index.
+  void reserve_edges(std::size_t edges) {
+    edges_.reserve(edges);
+    edge_index_.reserve(edges);
+  }
 
  private:
   int width_;

@@ -15,7 +15,8 @@
 #        ".gpu/run .gpu/bin/gplanner_plan_bench")
 #   SCENES (default: every shipped scene), RUNS (10), LIMIT (30 s per run),
 #   BUDGET (seconds per planner and scene after which no new run starts; default 120),
-#   PLUGIN_SCENES and PLUGIN_BUDGET (the plugin phase's; default SCENES and BUDGET)
+#   PLUGIN_SCENES and PLUGIN_BUDGET (the plugin phase's; default SCENES and BUDGET),
+#   OMPL_PLANNERS (the ompl phase's; default "ompl-lazyprm ompl-prm ompl-rrtconnect")
 set -euo pipefail
 cd "$(dirname "$0")/.."
 phase=$1
@@ -30,6 +31,7 @@ plugin_budget=${PLUGIN_BUDGET:-$budget}
 ompl_cores=${OMPL_CORES:-2-15}
 ompl_jobs=${OMPL_JOBS:-14}
 plugin_cores=${PLUGIN_CORES:-0-1}
+ompl_planners=${OMPL_PLANNERS:-"ompl-lazyprm ompl-prm ompl-rrtconnect"}
 pin() {  # pin to cores where taskset exists
   local cores=$1
   shift
@@ -46,7 +48,7 @@ run_ours() {
 run_ompl() {
   local pids=()
   for s in $scenes; do
-    for p in ompl-lazyprm ompl-prm ompl-rrtconnect; do
+    for p in $ompl_planners; do
       while [ "$(jobs -rp | wc -l)" -ge "$ompl_jobs" ]; do wait -n || true; done
       pin "$ompl_cores" "${bench[@]}" "scenes/$s.yaml" --planners "$p" "${common[@]}" \
         --budget "$budget" &
@@ -74,5 +76,5 @@ case $phase in
     run_plugin
     wait "$ompl_pid"
     ;;
-  *) sed -n 2,20p "$0"; exit 2 ;;
+  *) sed -n 2,19p "$0"; exit 2 ;;
 esac

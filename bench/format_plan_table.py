@@ -49,6 +49,9 @@ def main():
                                          fmt(max(times)), solved, len(v))
 
     print_ours_against_ompl(runs, median, cell)
+    if any("shortcut_seconds" in r for s in SCENES for r in runs.get((s, "ours-lazyprm"), [])):
+        print()
+        print_first_path(runs, median)
     if any(p.endswith("@gpu") for _, p in runs):
         print()
         print_plugin_against_fcl(runs, median, cell)
@@ -72,6 +75,31 @@ def print_ours_against_ompl(runs, median, cell):
                 ratios.append("%s%.0fx" % (">" if bound else "", t / ours))
         print("| %s | %s | %s |" % (scene, " | ".join(cell(scene, p) for p in PLANNERS),
                                     " | ".join(ratios)))
+
+
+def print_first_path(runs, median):
+    """Ours to the first path (its time less the shortcutting, which OMPL's planners
+    do not do) against OMPL's LazyPRM and PRM."""
+    print("| scene | ours-lazyprm to the first path | OMPL LazyPRM / it | OMPL PRM / it |")
+    print("| --- | --- | --- | --- |")
+    for scene in SCENES:
+        v = [r for r in runs.get((scene, "ours-lazyprm"), []) if "shortcut_seconds" in r]
+        if not v:
+            continue
+        times = [r["seconds"] - (r["shortcut_seconds"] if r["solved"] else 0) for r in v]
+        ours = statistics.median(times)
+        ours_bound = sum(r["solved"] for r in v) * 2 <= len(v)
+        ratios = []
+        for base in ["ompl-lazyprm", "ompl-prm"]:
+            t, bound = median(scene, base)
+            if t is None:
+                ratios.append("-")
+            elif ours_bound:
+                ratios.append("ours failed")
+            else:
+                ratios.append("%s%.0fx" % (">" if bound else "", t / ours))
+        print("| %s | %s s (%s-%s) | %s |" % (scene, fmt(ours), fmt(min(times)), fmt(max(times)),
+                                            " | ".join(ratios)))
 
 
 def print_plugin_against_fcl(runs, median, cell):

@@ -54,6 +54,7 @@ struct Run {
   int seed = 0;
   bool solved = false;
   double seconds = 0, length = 0;
+  double shortcut_seconds = -1;  // ours: of `seconds`, shortening the found path
   std::size_t checks = 0;
 };
 
@@ -61,8 +62,9 @@ void print(const gplanner::Scene& scene, const Run& run) {
   std::cout << std::setprecision(6) << "{\"scene\":\"" << scene.name << "\",\"planner\":\""
             << run.planner << "\",\"checker\":\"" << run.checker << "\",\"seed\":" << run.seed
             << ",\"solved\":" << (run.solved ? "true" : "false") << ",\"seconds\":" << run.seconds
-            << ",\"length\":" << run.length << ",\"state_checks\":" << run.checks << "}"
-            << std::endl;
+            << ",\"length\":" << run.length << ",\"state_checks\":" << run.checks;
+  if (run.shortcut_seconds >= 0) std::cout << ",\"shortcut_seconds\":" << run.shortcut_seconds;
+  std::cout << "}" << std::endl;
 }
 
 // OMPL's planner `name` (ompl-lazyprm, ompl-prm or ompl-rrtconnect). Without `plugin`:
@@ -119,6 +121,7 @@ Run run_ours(const gplanner::Scene& scene, const std::string& name, double time_
   run.seconds = result.times.total;
   run.length = result.length;
   run.checks = result.states_checked + result.samples_checked;
+  run.shortcut_seconds = result.times.shortcutting;
   return run;
 }
 

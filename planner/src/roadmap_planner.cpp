@@ -174,9 +174,9 @@ void RoadmapPlanner::add_next_paths(const std::vector<double>& to_goal, std::uin
   // bound. The shortest valid path is found all the same: the batch only makes more
   // unknown edges known. Stops at a path with no unknown edge (a valid way no longer
   // than any later one), once the batch's samples would fill one checker call, or at a
-  // search that expands more than kSpeculation times what the shortest path's did (at
-  // least kMinSpeculation vertices): with the batch set aside the search may have to go
-  // around much of the roadmap, which costs more than the checker call it saves. (Their
+  // search that would expand more than kSpeculation times the shortest path's vertices
+  // (at least kMinSpeculation): with the batch set aside a search may have to go around
+  // much of the roadmap, which costs more than the checker call it saves. (Their
   // expansions do not count towards recomputing to_goal: they say how far the batch is
   // set aside, not how stale to_goal has become.)
   constexpr std::size_t kSpeculation = 32, kMinSpeculation = 1024;

@@ -65,10 +65,10 @@ class RoadmapPlanner {
   // The path's edges whose state is unknown.
   std::vector<std::uint32_t> unknown_edges(const GraphPath& path) const;
   // Lazy PRM: adds to `batch` (the shortest path's unknown edges) those of the next
-  // shortest paths, up to options_.lazy_batch_paths paths in all; shortest_expanded:
-  // the vertices the shortest path's search expanded.
+  // shortest paths, up to options_.lazy_batch_paths paths in all; shortest_vertices:
+  // the shortest path's vertex count.
   void add_next_paths(const std::vector<double>& to_goal, std::uint32_t s, std::uint32_t g,
-                      std::size_t shortest_expanded, std::vector<std::uint32_t>* batch,
+                      std::size_t shortest_vertices, std::vector<std::uint32_t>* batch,
                       PlanResult* result);
   bool out_of_time(PlanResult* result) const;
   void report(const char* stage, const PlanResult& result) const;

@@ -32,6 +32,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gplanner/planner/checker_factory.h"
@@ -125,6 +126,13 @@ Run run_ours(const gplanner::Scene& scene, const std::string& name, double time_
   return run;
 }
 
+// "ompl-prm@gpu" -> {"ompl-prm", "gpu"}; "ompl-prm" -> {"ompl-prm", ""}.
+std::pair<std::string, std::string> split_planner(const std::string& planner) {
+  const std::size_t at = planner.find('@');
+  if (at == std::string::npos) return {planner, ""};
+  return {planner.substr(0, at), planner.substr(at + 1)};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -175,26 +183,24 @@ int main(int argc, char** argv) {
         gplanner::make_metric(scene.space, scene.planner), checker->backend());
     std::map<std::string, std::unique_ptr<gplanner::CollisionChecker>> plugins;
     for (const std::string& planner : planners) {
-      const std::size_t at = planner.find('@');
-      const std::string base = planner.substr(0, at);
+      const auto [base, plugin_backend] = split_planner(planner);
       if ((base != "ours-lazyprm" && base != "ours-prm" && base != "ompl-lazyprm" &&
            base != "ompl-prm" && base != "ompl-rrtconnect") ||
-          (at != std::string::npos && base.rfind("ours-", 0) == 0)) {
+          (!plugin_backend.empty() && base.rfind("ours-", 0) == 0)) {
         std::cerr << "gplanner_plan_bench: unknown planner " << planner << "\n";
         return 2;
       }
-      if (at != std::string::npos && !plugins.count(planner.substr(at + 1))) {
+      if (!plugin_backend.empty() && !plugins.count(plugin_backend)) {
         std::string notice;
-        plugins[planner.substr(at + 1)] =
-            gplanner::make_collision_checker(scene, planner.substr(at + 1), {}, &notice);
+        plugins[plugin_backend] =
+            gplanner::make_collision_checker(scene, plugin_backend, {}, &notice);
         if (!notice.empty()) std::cerr << "notice: " << notice << "\n";
       }
     }
     for (const std::string& planner : planners) {
-      const std::size_t at = planner.find('@');
-      const std::string base = planner.substr(0, at);
+      const auto [base, plugin_backend] = split_planner(planner);
       gplanner::CollisionChecker* plugin =
-          at == std::string::npos ? nullptr : plugins.at(planner.substr(at + 1)).get();
+          plugin_backend.empty() ? nullptr : plugins.at(plugin_backend).get();
       int planned = runs;
       double spent = 0;
       for (int seed = 1; seed <= planned && spent < budget; ++seed) {

@@ -85,20 +85,29 @@ double LocalPlanner::component_segments(const float* a, const float* b) const {
 
 bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t count,
                                  std::uint8_t* invalid) {
+  const std::size_t width = scene_.space.width();
+  std::vector<int> segment_count(count);
+  for (std::size_t e = 0; e < count; ++e) {
+    if (e % 65536 == 0 && e > 0 && should_stop_ && should_stop_()) return false;
+    segment_count[e] = segments(from + e * width, to + e * width);
+  }
+  return check_motions(from, to, count, segment_count.data(), invalid);
+}
+
+bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t count,
+                                 const int* segment_count, std::uint8_t* invalid) {
   const ConfigurationSpace& space = scene_.space;
   const std::size_t width = space.width();
   stats_.motions += count;
   // Each motion's samples in coarse-to-fine order, one order shared by every motion of
   // the same segment count (a roadmap's millions of edges have few distinct counts).
   // The stop is looked at every 65,536 motions here too: PRM hands over all its edges.
-  std::vector<int> segment_count(count);
   std::vector<const std::vector<int>*> order(count);
   std::map<int, std::vector<int>> orders;  // by segment count; nodes never move
   std::size_t remaining = 0;
   for (std::size_t e = 0; e < count; ++e) {
     if (e % 65536 == 0 && e > 0 && should_stop_ && should_stop_()) return false;
     invalid[e] = 0;
-    segment_count[e] = segments(from + e * width, to + e * width);
     auto it = orders.find(segment_count[e]);
     if (it == orders.end())
       it = orders.emplace(segment_count[e], coarse_to_fine_order(segment_count[e])).first;

@@ -12,6 +12,86 @@ namespace {
 // Rounds stop putting midpoints in once the path has this many waypoints.
 constexpr std::size_t kMaxWaypoints = 256;
 constexpr std::size_t kNone = ~std::size_t(0);
+
+// The shortcuts a round proposes on a path, each with the segment count it is first
+// checked at.
+struct Proposal {
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;  // waypoint indices (i, j)
+  std::vector<float> from, to;                             // shape [pairs, width]
+  std::vector<int> segments;
+  // Checked at the fine resolution at once (no second check): where calls cost more
+  // than the extra samples and the fine samples fit one call.
+  bool fine_at_once = false;
+};
+
+// Shortcuts (i, j), j > i + 1, on `path`: all of them when few, else `candidates` at
+// random.
+Proposal propose(const std::vector<float>& path, int width, int candidates, LocalPlanner* local,
+                 LocalPlanner* fine, std::mt19937_64* rng) {
+  Proposal p;
+  const std::size_t m = path.size() / width;
+  const std::size_t all = (m - 1) * (m - 2) / 2;
+  if (all <= static_cast<std::size_t>(candidates)) {
+    for (std::size_t i = 0; i + 2 < m; ++i)
+      for (std::size_t j = i + 2; j < m; ++j) p.pairs.emplace_back(i, j);
+  } else {
+    std::set<std::pair<std::size_t, std::size_t>> chosen;
+    std::uniform_int_distribution<std::size_t> pick(0, m - 1);
+    while (chosen.size() < static_cast<std::size_t>(candidates)) {
+      std::size_t i = pick(*rng), j = pick(*rng);
+      if (i > j) std::swap(i, j);
+      if (j >= i + 2) chosen.emplace(i, j);
+    }
+    p.pairs.assign(chosen.begin(), chosen.end());
+  }
+  const std::size_t n = p.pairs.size();
+  p.from.resize(n * width);
+  p.to.resize(n * width);
+  std::vector<int> coarse(n), finer(n);
+  std::size_t coarse_samples = 0, fine_samples = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    std::copy_n(&path[p.pairs[k].first * width], width, &p.from[k * width]);
+    std::copy_n(&path[p.pairs[k].second * width], width, &p.to[k * width]);
+    coarse[k] = local->segments(&p.from[k * width], &p.to[k * width]);
+    finer[k] = fine->segments(&p.from[k * width], &p.to[k * width]);
+    coarse_samples += coarse[k] - 1;
+    fine_samples += finer[k] - 1;
+  }
+  p.fine_at_once = fine_samples <= fine->one_batch_samples() &&
+                   fine_samples < coarse_samples + local->configurations_per_call_cost();
+  p.segments = p.fine_at_once ? finer : coarse;
+  return p;
+}
+
+// The waypoints on the way that ends at the last one (by `parent`), first to last.
+std::vector<std::size_t> kept_waypoints(const std::vector<std::size_t>& parent) {
+  std::vector<std::size_t> kept;
+  for (std::size_t j = parent.size() - 1;; j = parent[j]) {
+    kept.push_back(j);
+    if (j == 0) break;
+  }
+  std::reverse(kept.begin(), kept.end());
+  return kept;
+}
+
+// The path through the kept waypoints of `path`, with a midpoint in every segment when
+// `refine` (so that the next round can cut corners closer).
+std::vector<float> kept_path(const ConfigurationSpace& space, const std::vector<float>& path,
+                             const std::vector<std::size_t>& kept, bool refine) {
+  const int width = space.width();
+  std::vector<float> next;
+  std::vector<float> mid(width);
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    const float* q = &path[kept[k] * width];
+    if (k > 0 && refine) {
+      space.interpolate(&path[kept[k - 1] * width], q, 0.5, mid.data());
+      next.insert(next.end(), mid.begin(), mid.end());
+    }
+    next.insert(next.end(), q, q + width);
+  }
+  return next;
+}
+
 }  // namespace
 
 double path_length(const ConfigurationMetric& metric, const std::vector<float>& path, int width) {
@@ -26,43 +106,31 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
                      int rounds, int candidates, std::mt19937_64* rng, std::vector<float>* path) {
   const int width = space.width();
   const ConfigurationMetric& metric = local->metric();
+  // Where calls cost more than samples, the next round's shortcuts are proposed on the
+  // path this round gives if the shortcuts it takes pass their fine check, and checked
+  // in the same call as that fine check; if one fails, that proposal is dropped (and
+  // the generator set back), so the result is the same either way.
+  const bool pipelined = local->configurations_per_call_cost() > 0;
+  Proposal ahead;  // the next round's shortcuts, already checked
+  std::vector<std::uint8_t> ahead_invalid;
+  bool have_ahead = false;
   for (int round = 0; round < rounds; ++round) {
     const std::size_t m = path->size() / width;
     if (m < 3) break;
-    // Shortcuts (i, j), j > i + 1: all of them when few, else `candidates` at random.
-    std::vector<std::pair<std::size_t, std::size_t>> pairs;
-    const std::size_t all = (m - 1) * (m - 2) / 2;
-    if (all <= static_cast<std::size_t>(candidates)) {
-      for (std::size_t i = 0; i + 2 < m; ++i)
-        for (std::size_t j = i + 2; j < m; ++j) pairs.emplace_back(i, j);
+    Proposal p;
+    std::vector<std::uint8_t> invalid;
+    if (have_ahead) {
+      p = std::move(ahead);
+      invalid = std::move(ahead_invalid);
+      have_ahead = false;
     } else {
-      std::set<std::pair<std::size_t, std::size_t>> chosen;
-      std::uniform_int_distribution<std::size_t> pick(0, m - 1);
-      while (chosen.size() < static_cast<std::size_t>(candidates)) {
-        std::size_t i = pick(*rng), j = pick(*rng);
-        if (i > j) std::swap(i, j);
-        if (j >= i + 2) chosen.emplace(i, j);
-      }
-      pairs.assign(chosen.begin(), chosen.end());
+      p = propose(*path, width, candidates, local, fine, rng);
+      invalid.resize(p.pairs.size());
+      if (!local->check_motions(p.from.data(), p.to.data(), p.pairs.size(), p.segments.data(),
+                                invalid.data()))
+        break;
     }
-    std::vector<float> from(pairs.size() * width), to(pairs.size() * width);
-    for (std::size_t p = 0; p < pairs.size(); ++p) {
-      std::copy_n(&(*path)[pairs[p].first * width], width, &from[p * width]);
-      std::copy_n(&(*path)[pairs[p].second * width], width, &to[p * width]);
-    }
-    // Where calls cost more than samples (the GPU), every shortcut is checked at the fine
-    // resolution at once when that adds fewer samples than a call costs and fits one
-    // call: one call instead of two or more.
-    std::size_t coarse_samples = 0, fine_samples = 0;
-    for (std::size_t p = 0; p < pairs.size(); ++p) {
-      coarse_samples += local->segments(&from[p * width], &to[p * width]) - 1;
-      fine_samples += fine->segments(&from[p * width], &to[p * width]) - 1;
-    }
-    const bool fine_at_once = fine_samples <= fine->one_batch_samples() &&
-                              fine_samples < coarse_samples + local->configurations_per_call_cost();
-    std::vector<std::uint8_t> invalid(pairs.size());
-    LocalPlanner* first = fine_at_once ? fine : local;
-    if (!first->check_motions(from.data(), to.data(), pairs.size(), invalid.data())) break;
+    const bool refine = round + 1 < rounds;  // midpoints, unless the path has too many
     auto d = [&](std::size_t i, std::size_t j) {
       return static_cast<double>(
           configuration_distance(metric, &(*path)[i * width], &(*path)[j * width]));
@@ -70,25 +138,25 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
     // Shortest way through the waypoints in order, over the path's own segments and the
     // shortcuts valid so far; the shortcuts it takes are checked again at the fine
     // resolution, and those failing drop out, until the way holds only certified ones.
-    std::vector<std::uint8_t> certified(pairs.size(), fine_at_once ? 1 : 0);
+    std::vector<std::uint8_t> certified(p.pairs.size(), p.fine_at_once ? 1 : 0);
     std::vector<std::size_t> parent(m, 0), via(m, kNone);
     while (true) {
       std::vector<std::vector<std::size_t>> into(m);  // valid shortcuts ending at j
-      for (std::size_t p = 0; p < pairs.size(); ++p)
-        if (!invalid[p]) into[pairs[p].second].push_back(p);
+      for (std::size_t k = 0; k < p.pairs.size(); ++k)
+        if (!invalid[k]) into[p.pairs[k].second].push_back(k);
       std::vector<double> best(m, std::numeric_limits<double>::infinity());
       best[0] = 0;
       for (std::size_t j = 1; j < m; ++j) {
         best[j] = best[j - 1] + d(j - 1, j);
         parent[j] = j - 1;
         via[j] = kNone;
-        for (const std::size_t p : into[j]) {
-          const std::size_t i = pairs[p].first;
+        for (const std::size_t k : into[j]) {
+          const std::size_t i = p.pairs[k].first;
           const double c = best[i] + d(i, j);
           if (c < best[j]) {
             best[j] = c;
             parent[j] = i;
-            via[j] = p;
+            via[j] = k;
           }
         }
       }
@@ -96,42 +164,61 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
       for (std::size_t j = m - 1; j > 0; j = parent[j])
         if (via[j] != kNone && !certified[via[j]]) unchecked.push_back(via[j]);
       if (unchecked.empty()) break;
-      std::vector<float> a(unchecked.size() * width), b(unchecked.size() * width);
-      for (std::size_t u = 0; u < unchecked.size(); ++u) {
-        std::copy_n(&from[unchecked[u] * width], width, &a[u * width]);
-        std::copy_n(&to[unchecked[u] * width], width, &b[u * width]);
+      // The fine check of the way's shortcuts, and (pipelined) the next round's
+      // shortcuts on the path this way would give.
+      std::vector<float> a, b;
+      std::vector<int> segments;
+      for (const std::size_t k : unchecked) {
+        a.insert(a.end(), &p.from[k * width], &p.from[(k + 1) * width]);
+        b.insert(b.end(), &p.to[k * width], &p.to[(k + 1) * width]);
+        segments.push_back(fine->segments(&p.from[k * width], &p.to[k * width]));
       }
-      std::vector<std::uint8_t> fails(unchecked.size());
-      fine->check_motions(a.data(), b.data(), unchecked.size(), fails.data());
+      const std::mt19937_64 rng_before = *rng;
+      Proposal next;
+      bool with_next = false;
+      if (pipelined && round + 1 < rounds) {
+        const std::vector<std::size_t> kept = kept_waypoints(parent);
+        const bool refined = refine && 2 * kept.size() <= kMaxWaypoints;
+        if (kept.size() < m || refined) {  // there will be a next round
+          const std::vector<float> if_passed = kept_path(space, *path, kept, refined);
+          if (if_passed.size() / width >= 3) {
+            next = propose(if_passed, width, candidates, local, fine, rng);
+            a.insert(a.end(), next.from.begin(), next.from.end());
+            b.insert(b.end(), next.to.begin(), next.to.end());
+            segments.insert(segments.end(), next.segments.begin(), next.segments.end());
+            with_next = true;
+          }
+        }
+      }
+      std::vector<std::uint8_t> fails(segments.size());
+      const bool checked = pipelined ? local->check_motions(a.data(), b.data(), segments.size(),
+                                                            segments.data(), fails.data())
+                                     : fine->check_motions(a.data(), b.data(), segments.size(),
+                                                           segments.data(), fails.data());
+      if (!checked) return path_length(metric, *path, width);  // stopped: the path as it was
+      bool all_passed = true;
       for (std::size_t u = 0; u < unchecked.size(); ++u) {
         if (fails[u]) {
           invalid[unchecked[u]] = 1;
+          all_passed = false;
         } else {
           certified[unchecked[u]] = 1;
         }
       }
-    }
-    std::vector<std::size_t> kept;
-    for (std::size_t j = m - 1;; j = parent[j]) {
-      kept.push_back(j);
-      if (j == 0) break;
-    }
-    std::reverse(kept.begin(), kept.end());
-    // The kept waypoints, with a midpoint in every segment for the next round.
-    std::vector<float> next;
-    const bool refine = round + 1 < rounds && 2 * kept.size() <= kMaxWaypoints;
-    std::vector<float> mid(width);
-    for (std::size_t k = 0; k < kept.size(); ++k) {
-      const float* q = &(*path)[kept[k] * width];
-      if (k > 0 && refine) {
-        space.interpolate(&(*path)[kept[k - 1] * width], q, 0.5, mid.data());
-        next.insert(next.end(), mid.begin(), mid.end());
+      if (with_next && all_passed) {
+        ahead = std::move(next);
+        ahead_invalid.assign(fails.begin() + unchecked.size(), fails.end());
+        have_ahead = true;
+      } else if (with_next) {
+        *rng = rng_before;
       }
-      next.insert(next.end(), q, q + width);
     }
+    const std::vector<std::size_t> kept = kept_waypoints(parent);
+    const bool refined = refine && 2 * kept.size() <= kMaxWaypoints;
     const bool shorter = kept.size() < m;
-    path->swap(next);
-    if (!shorter && !refine) break;
+    std::vector<float> next_path = kept_path(space, *path, kept, refined);
+    path->swap(next_path);
+    if (!shorter && !refined) break;
   }
   return path_length(metric, *path, width);
 }

@@ -1,7 +1,8 @@
-// Path shortcutting: a lazy PRM path shortened on a checker whose calls cost little and
-// on one whose calls cost as much as many samples (as the GPU's do); both shortened
-// paths are free at a tenth of the edge resolution, and the second takes one call a
-// round.
+// Path shortcutting: a lazy PRM path shortened on checkers whose calls cost nothing,
+// a little and as much as many samples (as the GPU's do): every shortened path is free
+// at a tenth of the edge resolution; checking the next round's shortcuts with this
+// round's fine check gives the same path in fewer calls; checking every shortcut finely
+// at once takes one call a round.
 
 #include "gplanner/planner/path_shortcutting.h"
 
@@ -34,7 +35,7 @@ class CostlyCallChecker : public CollisionChecker {
   std::size_t per_call_;
 };
 
-TEST(PathShortcutting, OneCallARoundWhereCallsCostMoreThanSamples) {
+TEST(PathShortcutting, FewerCallsWhereCallsCostMoreThanSamples) {
   const Scene scene = load_scene(testing::project_root() + "/scenes/pr2_base_arm.yaml");
   CpuChecker cpu(scene);
   std::unique_ptr<NeighborFinder> neighbors =
@@ -47,29 +48,33 @@ TEST(PathShortcutting, OneCallARoundWhereCallsCostMoreThanSamples) {
   ASSERT_TRUE(found.solved) << found.stop_reason;
   ASSERT_GT(found.path.size() / scene.space.width(), 3u);
 
-  const int rounds = 2, candidates = 64;
-  std::size_t calls[2];
-  double lengths[2];
-  for (const int costly : {0, 1}) {
-    CostlyCallChecker checker(scene, costly ? 1u << 20 : 0u);
+  const int rounds = 3, candidates = 64;
+  // Calls cost: nothing (checked as before), as much as 1 configuration (the next
+  // round's shortcuts checked with this round's fine check), as much as 2^20 (every
+  // shortcut checked finely at once where that fits one call).
+  const std::size_t costs[] = {0, 1, 1u << 20};
+  std::vector<float> paths[3];
+  std::size_t calls[3];
+  for (int c = 0; c < 3; ++c) {
+    CostlyCallChecker checker(scene, costs[c]);
     LocalPlanner local(scene, &checker, options.local);
     LocalPlannerOptions fine_options = options.local;
     fine_options.resolution_fraction /= options.final_check_refinement;
     LocalPlanner fine(scene, &checker, fine_options);
-    std::vector<float> path = found.path;
+    paths[c] = found.path;
     std::mt19937_64 rng(1);
-    lengths[costly] = shortcut_path(scene.space, &local, &fine, rounds, candidates, &rng, &path);
-    EXPECT_EQ(testing::path_problem(scene, path), "") << (costly ? "costly calls" : "cheap calls");
-    EXPECT_LT(lengths[costly], found.length);
-    calls[costly] = local.stats().batches + fine.stats().batches;
-    if (costly) {
-      EXPECT_EQ(local.stats().batches, 0u);  // every shortcut checked finely, at once
-      EXPECT_LE(fine.stats().batches, static_cast<std::size_t>(rounds));
-    } else {
-      EXPECT_GT(local.stats().batches, 0u);
-    }
+    const double length =
+        shortcut_path(scene.space, &local, &fine, rounds, candidates, &rng, &paths[c]);
+    EXPECT_EQ(testing::path_problem(scene, paths[c]), "") << "call cost " << costs[c];
+    EXPECT_LT(length, found.length);
+    calls[c] = local.stats().batches + fine.stats().batches;
+    if (c > 0) EXPECT_EQ(fine.stats().batches, 0u);  // every call through `local`
   }
+  // Checking the next round's shortcuts early changes nothing but the number of calls.
+  EXPECT_EQ(paths[1], paths[0]);
   EXPECT_LT(calls[1], calls[0]);
+  EXPECT_LE(calls[2], static_cast<std::size_t>(rounds));  // one call a round
+  EXPECT_LT(calls[2], calls[0]);
 }
 
 }  // namespace

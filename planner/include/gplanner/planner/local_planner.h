@@ -60,6 +60,10 @@ class LocalPlanner {
   // check states in their own batches. Returns false, with `invalid` incomplete, when
   // the stop condition (set_stop) said to stop between two batches.
   bool check_motions(const float* from, const float* to, std::size_t count, std::uint8_t* invalid);
+  // The same with each motion's segment count given (shape [count]; e.g. another
+  // planner's segments(), so that motions at two resolutions share one set of batches).
+  bool check_motions(const float* from, const float* to, std::size_t count,
+                     const int* segment_count, std::uint8_t* invalid);
 
   // Polled between batches of check_motions; true stops it. Empty: never stop.
   void set_stop(std::function<bool()> should_stop) { should_stop_ = std::move(should_stop); }

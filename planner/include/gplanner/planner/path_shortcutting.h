@@ -5,9 +5,11 @@
 // whose shortcuts are checked again with `fine` (dropping those that fail, until the
 // path holds only shortcuts both passed); then puts a midpoint into every segment so
 // that the next round can cut corners closer. Where the checker's calls cost more than
-// the extra samples (the GPU), a round checks every shortcut with `fine` alone, in one
-// call. A path valid at fine's resolution stays so. Stops, with the path as it is, when
-// `local`'s stop condition says so.
+// samples (the GPU), the next round's shortcuts are checked in the same call as this
+// round's fine check (dropped if that fails: the same path, fewer calls), and a round
+// checks every shortcut with `fine` alone, in one call, where that adds fewer samples
+// than a call costs. A path valid at fine's resolution stays so. Stops, with the path as
+// it is, when `local`'s stop condition says so.
 
 #include <random>
 #include <vector>

@@ -14,11 +14,6 @@ namespace {
 
 constexpr char kMagic[] = "gplanner-roadmap 1\n";
 
-std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t(a) << 32) | b;
-}
-
 // FNV-1a, 64 bit.
 class Hash {
  public:
@@ -88,20 +83,25 @@ std::uint32_t Roadmap::add_vertex(const float* q) {
 }
 
 long long Roadmap::add_edge(std::uint32_t a, std::uint32_t b, float length, EdgeState state) {
-  if (a == b) return -1;
+  if (a == b || find_edge(a, b) >= 0) return -1;
   if (a > b) std::swap(a, b);
-  const auto [it, inserted] =
-      edge_index_.emplace(pair_key(a, b), static_cast<std::uint32_t>(edges_.size()));
-  if (!inserted) return -1;
+  const auto e = static_cast<std::uint32_t>(edges_.size());
   edges_.push_back({a, b, length, state});
-  adjacency_[a].push_back(it->second);
-  adjacency_[b].push_back(it->second);
-  return it->second;
+  adjacency_[a].push_back(e);
+  adjacency_[b].push_back(e);
+  return e;
 }
 
 long long Roadmap::find_edge(std::uint32_t a, std::uint32_t b) const {
-  const auto it = edge_index_.find(pair_key(a, b));
-  return it == edge_index_.end() ? -1 : static_cast<long long>(it->second);
+  if (a == b || a >= adjacency_.size() || b >= adjacency_.size()) return -1;
+  // The shorter list: a new milestone has about k edges, where a hub may have thousands.
+  const std::uint32_t v = adjacency_[a].size() <= adjacency_[b].size() ? a : b;
+  const std::uint32_t w = v == a ? b : a;
+  for (const std::uint32_t e : adjacency_[v]) {
+    const RoadmapEdge& edge = edges_[e];
+    if (edge.a == w || edge.b == w) return e;
+  }
+  return -1;
 }
 
 std::uint64_t scene_fingerprint(const Scene& scene) {

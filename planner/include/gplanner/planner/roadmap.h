@@ -6,7 +6,6 @@
 
 #include <cstdint>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace gplanner {
@@ -42,18 +41,14 @@ class Roadmap {
   long long add_edge(std::uint32_t a, std::uint32_t b, float length,
                      EdgeState state = EdgeState::kUnknown);
   long long find_edge(std::uint32_t a, std::uint32_t b) const;
-  // Room for this many edges in all, so that adding them does not rehash the index.
-  void reserve_edges(std::size_t edges) {
-    edges_.reserve(edges);
-    edge_index_.reserve(edges);
-  }
+  // Room for this many edges in all.
+  void reserve_edges(std::size_t edges) { edges_.reserve(edges); }
 
  private:
   int width_;
   std::vector<float> vertices_;
   std::vector<RoadmapEdge> edges_;
   std::vector<std::vector<std::uint32_t>> adjacency_;
-  std::unordered_map<std::uint64_t, std::uint32_t> edge_index_;
 };
 
 // 64-bit fingerprint of what decides a roadmap's validity in `scene`: the robot's

@@ -18,7 +18,8 @@ constexpr std::size_t kNone = ~std::size_t(0);
 struct Proposal {
   std::vector<std::pair<std::size_t, std::size_t>> pairs;  // waypoint indices (i, j)
   std::vector<float> from, to;                             // shape [pairs, width]
-  std::vector<int> segments;
+  std::vector<int> segments;       // at the resolution they are first checked at
+  std::vector<int> fine_segments;  // at the fine resolution
   // Checked at the fine resolution at once (no second check): where calls cost more
   // than the extra samples and the fine samples fit one call.
   bool fine_at_once = false;
@@ -47,19 +48,20 @@ Proposal propose(const std::vector<float>& path, int width, int candidates, Loca
   const std::size_t n = p.pairs.size();
   p.from.resize(n * width);
   p.to.resize(n * width);
-  std::vector<int> coarse(n), finer(n);
+  p.segments.resize(n);
+  p.fine_segments.resize(n);
   std::size_t coarse_samples = 0, fine_samples = 0;
   for (std::size_t k = 0; k < n; ++k) {
     std::copy_n(&path[p.pairs[k].first * width], width, &p.from[k * width]);
     std::copy_n(&path[p.pairs[k].second * width], width, &p.to[k * width]);
-    coarse[k] = local->segments(&p.from[k * width], &p.to[k * width]);
-    finer[k] = fine->segments(&p.from[k * width], &p.to[k * width]);
-    coarse_samples += coarse[k] - 1;
-    fine_samples += finer[k] - 1;
+    p.segments[k] = local->segments(&p.from[k * width], &p.to[k * width]);
+    p.fine_segments[k] = fine->segments(&p.from[k * width], &p.to[k * width]);
+    coarse_samples += p.segments[k] - 1;
+    fine_samples += p.fine_segments[k] - 1;
   }
   p.fine_at_once = fine_samples <= fine->one_batch_samples() &&
                    fine_samples < coarse_samples + local->configurations_per_call_cost();
-  p.segments = p.fine_at_once ? finer : coarse;
+  if (p.fine_at_once) p.segments = p.fine_segments;
   return p;
 }
 
@@ -171,7 +173,7 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
       for (const std::size_t k : unchecked) {
         a.insert(a.end(), &p.from[k * width], &p.from[(k + 1) * width]);
         b.insert(b.end(), &p.to[k * width], &p.to[(k + 1) * width]);
-        segments.push_back(fine->segments(&p.from[k * width], &p.to[k * width]));
+        segments.push_back(p.fine_segments[k]);
       }
       const std::mt19937_64 rng_before = *rng;
       Proposal next;

@@ -210,9 +210,9 @@ void RoadmapPlanner::add_next_paths(const std::vector<double>& to_goal, std::uin
   for (const std::uint32_t e : *batch) roadmap_.edge(e).state = EdgeState::kUnknown;
 }
 
-void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result) {
-  if (edges.empty()) return;
-  StageTimer timer(&result->times.edge_checks);
+bool RoadmapPlanner::check_edge_motions(LocalPlanner* planner,
+                                        const std::vector<std::uint32_t>& edges,
+                                        std::vector<std::uint8_t>* invalid) const {
   const int width = scene_.space.width();
   std::vector<float> from(edges.size() * width), to(edges.size() * width);
   for (std::size_t i = 0; i < edges.size(); ++i) {
@@ -220,9 +220,16 @@ void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanRe
     std::copy_n(roadmap_.vertex(e.a), width, &from[i * width]);
     std::copy_n(roadmap_.vertex(e.b), width, &to[i * width]);
   }
-  std::vector<std::uint8_t> invalid(edges.size());
+  invalid->resize(edges.size());
+  return planner->check_motions(from.data(), to.data(), edges.size(), invalid->data());
+}
+
+void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result) {
+  if (edges.empty()) return;
+  StageTimer timer(&result->times.edge_checks);
+  std::vector<std::uint8_t> invalid;
   // Stopped part way: the edges stay unknown.
-  if (!local_.check_motions(from.data(), to.data(), edges.size(), invalid.data())) return;
+  if (!check_edge_motions(&local_, edges, &invalid)) return;
   for (std::size_t i = 0; i < edges.size(); ++i)
     roadmap_.edge(edges[i]).state = invalid[i] ? EdgeState::kInvalid : EdgeState::kValid;
   result->edges_checked += edges.size();
@@ -296,16 +303,10 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       std::vector<std::uint32_t> unchecked;
       for (const std::uint32_t e : path.edges)
         if (!certified_.count(e)) unchecked.push_back(e);
-      std::vector<float> from(unchecked.size() * width), to(unchecked.size() * width);
-      for (std::size_t i = 0; i < unchecked.size(); ++i) {
-        const RoadmapEdge& e = roadmap_.edge(unchecked[i]);
-        std::copy_n(roadmap_.vertex(e.a), width, &from[i * width]);
-        std::copy_n(roadmap_.vertex(e.b), width, &to[i * width]);
-      }
-      std::vector<std::uint8_t> invalid(unchecked.size());
+      std::vector<std::uint8_t> invalid;
       {
         StageTimer timer(&result.times.edge_checks);
-        fine.check_motions(from.data(), to.data(), unchecked.size(), invalid.data());
+        check_edge_motions(&fine, unchecked, &invalid);
       }
       bool certified = true;
       for (std::size_t i = 0; i < unchecked.size(); ++i) {

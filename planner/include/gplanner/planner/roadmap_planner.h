@@ -62,6 +62,10 @@ class RoadmapPlanner {
   std::size_t add_milestones(std::size_t count, PlanResult* result);
   std::size_t connect(PlanResult* result);
   void check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result);
+  // The motions along `edges` checked by `planner` (invalid: one entry per edge); false
+  // when its stop condition ended the check part way.
+  bool check_edge_motions(LocalPlanner* planner, const std::vector<std::uint32_t>& edges,
+                          std::vector<std::uint8_t>* invalid) const;
   // The path's edges whose state is unknown.
   std::vector<std::uint32_t> unknown_edges(const GraphPath& path) const;
   // Lazy PRM: adds to `batch` (the shortest path's unknown edges) those of the next

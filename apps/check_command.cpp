@@ -80,6 +80,7 @@ std::string gpu_details(gplanner::CollisionChecker* checker) {
       << " chunk(s), " << stats.bv_tests << " BV tests, " << stats.triangle_tests
       << " triangle tests";
   if (stats.rounds) out << ", " << stats.rounds << " rounds";
+  if (stats.warp_per_pair) out << ", one kernel (small batch)";
   return out.str();
 }
 
@@ -88,7 +89,8 @@ std::string gpu_details(gplanner::CollisionChecker* checker) {
 int run_check(int argc, char** argv) {
   const CommandLine args(
       argc, argv, 2,
-      {"n", "seed", "backend", "traversal", "compare", "threads", "memory-cap-mb", "out", "repeat"},
+      {"n", "seed", "backend", "traversal", "compare", "threads", "memory-cap-mb", "small-batch",
+       "out", "repeat"},
       {"json"});
   if (args.positionals().size() != 1) throw UsageError("gplan check takes one scene file");
   const std::string scene_file = args.positionals()[0];
@@ -101,6 +103,8 @@ int run_check(int argc, char** argv) {
   gplanner::CheckerOptions options;
   options.threads = static_cast<int>(args.count("threads", 0));
   options.gpu.memory_cap_bytes = static_cast<std::size_t>(args.count("memory-cap-mb", 0)) << 20;
+  if (args.has("small-batch"))
+    options.gpu.warp_per_pair_up_to = static_cast<std::size_t>(args.count("small-batch", 0));
   if (args.has("traversal") &&
       !gplanner::parse_traversal(args.text("traversal", ""), &options.gpu.traversal)) {
     throw UsageError("--traversal: '" + args.text("traversal", "") +
@@ -108,7 +112,7 @@ int run_check(int argc, char** argv) {
   }
   // The GPU's settings change nothing on the other backends: say so rather than ignore
   // them (a memory cap meant to be tested would go untested).
-  for (const char* gpu_only : {"traversal", "memory-cap-mb"}) {
+  for (const char* gpu_only : {"traversal", "memory-cap-mb", "small-batch"}) {
     if (args.has(gpu_only) && backend != "gpu" && compare != "gpu") {
       throw UsageError(std::string("--") + gpu_only +
                        " applies to the gpu backend only; add --backend gpu or --compare gpu");
@@ -260,7 +264,8 @@ int run_check(int argc, char** argv) {
                 << ",\"gpu_ms\":" << gpu->last_stats().milliseconds
                 << ",\"bv_tests\":" << gpu->last_stats().bv_tests
                 << ",\"triangle_tests\":" << gpu->last_stats().triangle_tests
-                << ",\"rounds\":" << gpu->last_stats().rounds;
+                << ",\"rounds\":" << gpu->last_stats().rounds
+                << ",\"small_batch\":" << (gpu->last_stats().warp_per_pair ? "true" : "false");
     }
     if (!compare.empty()) {
       std::cout << ",\"compare\":{\"backend\":" << json_string(compared_backend)

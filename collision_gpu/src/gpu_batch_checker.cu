@@ -4,6 +4,7 @@
 #include <cuda_runtime.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <cub/device/device_radix_sort.cuh>
 #include <stdexcept>
 #include <string>
@@ -26,6 +27,7 @@ struct Counters {
   unsigned long long triangle_tests;
   unsigned int jobs;  // balanced: jobs emitted
   unsigned int jobs_overflow;
+  unsigned int next_job;  // balanced, small batches: jobs taken by warps
   // The balanced task queue, kept on the device so that rounds follow one another
   // without the host: tasks [0, top) are queued; a round takes [begin, begin + launch).
   unsigned int top, begin, launch;
@@ -298,6 +300,183 @@ __global__ void balanced_roots_kernel(CollisionModelView m, const float* d_q, in
   }
 }
 
+// The same for articulated robots with many links and pairs, a warp per query: the
+// joint transforms and every bounding-sphere test spread over the lanes (one thread
+// would run them one after another: 130 us for a PR2 arm's 519 tests), only the
+// composition of the poses down the tree in one lane. Jobs are appended with one atomic
+// per warp and 32 tests.
+constexpr int kRootWarps = 4;  // warps (queries) per block
+
+__global__ void __launch_bounds__(32 * kRootWarps)
+    balanced_roots_warp_kernel(CollisionModelView m, const float* d_q, int n, Job* d_jobs,
+                               int job_capacity, Task* d_tasks, std::uint8_t* d_verdicts,
+                               Counters* d_counters) {
+  __shared__ float s_poses[kRootWarps][detail::kMaxLinks][12];   // X_PL, then X_WL
+  __shared__ float4 s_spheres[kRootWarps][detail::kMaxLinks];    // centre in the world
+  const int warp = threadIdx.x / 32;
+  const unsigned lane = threadIdx.x & 31;
+  const int i = blockIdx.x * kRootWarps + warp;
+  if (i >= n) return;  // the whole warp
+  const float* q = d_q + static_cast<std::size_t>(i) * m.width;
+  if (!detail::is_configuration(m, q)) {
+    if (lane == 0) d_verdicts[i] = 1;  // no configuration: colliding, and no jobs
+    return;
+  }
+  float(*poses)[12] = s_poses[warp];
+  for (int l = static_cast<int>(lane); l < m.link_count; l += 32)
+    store_transform(l == 0 ? detail::base_pose(m, q) : detail::joint_transform(m, l, q), poses[l]);
+  __syncwarp();
+  if (lane == 0) {
+    for (int l = 1; l < m.link_count; ++l) {
+      store_transform(detail::load_transform(poses[m.links[l].parent]) *
+                          detail::load_transform(poses[l]),
+                      poses[l]);
+    }
+  }
+  __syncwarp();
+  for (int l = static_cast<int>(lane); l < m.link_count; l += 32) {
+    const detail::V3f c = detail::sphere_center_W(m, l, detail::load_transform(poses[l]));
+    s_spheres[warp][l] = make_float4(c.x, c.y, c.z, 0.0f);
+  }
+  __syncwarp();
+  auto centre = [&](int l) {
+    const float4 c = s_spheres[warp][l];
+    return detail::V3f{c.x, c.y, c.z};
+  };
+  // Body b < link_count: link b against the environment; otherwise pair b - link_count.
+  const int bodies = m.link_count + m.pair_count;
+  for (int start = 0; start < bodies; start += 32) {
+    const int b = start + static_cast<int>(lane);
+    bool touch = false;
+    if (b < m.link_count) {
+      touch = detail::sphere_may_touch_environment(m, b, centre(b));
+    } else if (b < bodies) {
+      const int p = b - m.link_count;
+      touch = detail::spheres_may_touch(m, p, centre(m.pair_a[p]), centre(m.pair_b[p]));
+    }
+    const unsigned touching = __ballot_sync(kFullMask, touch);
+    if (touching == 0) continue;
+    unsigned base = 0;
+    const int leader = __ffs(touching) - 1;
+    if (lane == static_cast<unsigned>(leader))
+      base = atomicAdd(&d_counters->jobs, static_cast<unsigned>(__popc(touching)));
+    base = __shfl_sync(kFullMask, base, leader);
+    if (!touch) continue;
+    const unsigned slot = base + __popc(touching & ((1u << lane) - 1u));
+    if (slot >= static_cast<unsigned>(job_capacity)) {
+      d_counters->jobs_overflow = 1;
+      continue;
+    }
+    Job job;
+    job.query = i;
+    if (b < m.link_count) {
+      job.a = m.environment;
+      job.b = m.link_bodies[b];
+      for (int k = 0; k < 12; ++k) job.X_AB[k] = poses[b][k];
+    } else {
+      const int p = b - m.link_count;
+      job.a = m.link_bodies[m.pair_a[p]];
+      job.b = m.link_bodies[m.pair_b[p]];
+      store_transform(geometry::inverse(detail::load_transform(poses[m.pair_a[p]])) *
+                          detail::load_transform(poses[m.pair_b[p]]),
+                      job.X_AB);
+    }
+    d_jobs[slot] = job;
+    d_tasks[slot] = {static_cast<int>(slot), 0, 0};
+  }
+}
+
+// Small batches: a warp per job, taken in turn by the resident warps, its node pairs
+// on a stack in shared memory and tested up to 32 at a time (the top of the stack:
+// depth first across steps, breadth first within one), triangle tests in the same
+// kernel. More BV tests than the task rounds make (the early exit comes later), but a
+// whole batch in one launch: when the GPU has room to spare, a call's time is its longest
+// chain of dependent tests, and each round of tasks adds a launch to that chain.
+//
+// Stack bound: node pairs are pushed in order of depth, so all pairs of one depth lie
+// above those of the depth before; a step that pops a pair of depth t - 1 pops every
+// pair of depth t with it, and pushes at most 64 of depth t. At most 64 pairs per depth,
+// 64 * (traversal_depth + 1) in all: stack_capacity.
+constexpr int kPairWarps = 4;  // warps per block at most
+
+__global__ void __launch_bounds__(32 * kPairWarps)
+    balanced_warp_per_pair_kernel(CollisionModelView m, const Job* d_jobs, int stack_capacity,
+                                  std::uint8_t* d_collided, Counters* d_counters) {
+  extern __shared__ int2 s_stacks[];
+  if (d_counters->jobs_overflow) return;  // the host runs the chunk again, smaller
+  const unsigned jobs = d_counters->jobs;
+  const unsigned lane = threadIdx.x & 31;
+  int2* stack = s_stacks + static_cast<std::size_t>(threadIdx.x / 32) * stack_capacity;
+  volatile std::uint8_t* collided_flags = d_collided;
+  detail::TraversalCounts counts;
+  while (true) {
+    unsigned j = 0;
+    if (lane == 0) j = atomicAdd(&d_counters->next_job, 1u);
+    j = __shfl_sync(kFullMask, j, 0);
+    if (j >= jobs) break;
+    const Job& job = d_jobs[j];
+    const int query = job.query;
+    if (__shfl_sync(kFullMask, lane == 0 ? collided_flags[query] : 0, 0)) continue;
+    const BodyRange body_a = job.a, body_b = job.b;
+    const detail::Xf X_AB = detail::load_transform(job.X_AB);
+    if (lane == 0) stack[0] = make_int2(0, 0);
+    __syncwarp();
+    int top = 1;
+    bool collided = false;
+    for (int step = 1; top > 0; ++step) {
+      const int take = min(top, 32);
+      const bool active = static_cast<int>(lane) < take;
+      int2 pair = make_int2(0, 0);
+      if (active) pair = stack[top - take + static_cast<int>(lane)];
+      __syncwarp();
+      top -= take;
+      bool hit = false, split = false;
+      detail::NodePair first{}, second{};
+      if (active) {
+        const BvhNode& na = m.nodes[body_a.node_offset + pair.x];
+        const BvhNode& nb = m.nodes[body_b.node_offset + pair.y];
+        ++counts.bv_tests;
+        if (detail::nodes_overlap(na, nb, X_AB, m.margin)) {
+          if (na.is_leaf() && nb.is_leaf()) {
+            ++counts.triangle_tests;
+            hit = detail::leaf_collides(m.triangles[body_a.triangle_offset + na.triangle()],
+                                        m.triangles[body_b.triangle_offset + nb.triangle()],
+                                        X_AB, m.threshold);
+          } else {
+            // split_pair's rule without its order of the children (which loads both):
+            // the next step tests them side by side anyway.
+            if (detail::splits_a(na, nb)) {
+              first = {na.child, pair.y};
+              second = {na.child + 1, pair.y};
+            } else {
+              first = {pair.x, nb.child};
+              second = {pair.x, nb.child + 1};
+            }
+            split = true;
+          }
+        }
+      }
+      if (__any_sync(kFullMask, hit)) {
+        collided = true;
+        break;
+      }
+      const unsigned splitting = __ballot_sync(kFullMask, split);
+      if (split) {
+        const int at = top + 2 * __popc(splitting & ((1u << lane) - 1u));
+        stack[at] = make_int2(second.a, second.b);
+        stack[at + 1] = make_int2(first.a, first.b);
+      }
+      top += 2 * __popc(splitting);
+      __syncwarp();
+      // Another job of the query may have found a collision.
+      if ((step & 7) == 0 && __shfl_sync(kFullMask, lane == 0 ? collided_flags[query] : 0, 0))
+        break;
+    }
+    if (collided && lane == 0) collided_flags[query] = 1;
+  }
+  add_counts(counts, d_counters);
+}
+
 // Steps of depth-first traversal one task runs before it hands what is left of its
 // stack back to the queue: short enough that the work of one hard query spreads over
 // many threads in the next launch, long enough that a query finding a collision stops
@@ -458,9 +637,7 @@ __global__ void __launch_bounds__(256, 2)
 // Ends a round: the children join the queue, and the next round takes the newest tasks
 // (depth-first across rounds, which keeps the queue short), as many as leave room for
 // their children.
-__global__ void balanced_advance_kernel(Counters* d_counters, unsigned task_capacity,
-                                        unsigned max_launch) {
-  Counters& c = *d_counters;
+__device__ void advance_queue(Counters& c, unsigned task_capacity, unsigned max_launch) {
   const unsigned top = c.begin + c.tasks;
   // A task leaves at most kTaskSteps + 1 pairs in place of itself.
   const unsigned room = (task_capacity - top) / kTaskSteps;
@@ -476,6 +653,24 @@ __global__ void balanced_advance_kernel(Counters* d_counters, unsigned task_capa
   if (launch > 0) ++c.rounds;
 }
 
+__global__ void balanced_advance_kernel(Counters* d_counters, unsigned task_capacity,
+                                        unsigned max_launch) {
+  advance_queue(*d_counters, task_capacity, max_launch);
+}
+
+// Starts a chunk's traversal after the roots kernel: the jobs' root tasks fill the
+// queue, as if a round at 0 had emitted them. When the jobs overflowed their buffer no
+// round runs (the host sees the flag and runs the chunk again, smaller).
+__global__ void balanced_start_kernel(Counters* d_counters, unsigned task_capacity,
+                                      unsigned max_launch) {
+  Counters& c = *d_counters;
+  c.begin = 0;
+  c.tasks = c.jobs_overflow ? 0 : c.jobs;
+  c.rounds = 0;
+  c.queue_full = 0;
+  advance_queue(c, task_capacity, max_launch);
+}
+
 int blocks_for(std::size_t n, int threads) { return static_cast<int>((n + threads - 1) / threads); }
 
 }  // namespace
@@ -488,6 +683,12 @@ struct GpuBatchChecker::Impl {
   std::size_t memory_cap = 0;
   int resident_task_blocks = 1;  // balanced: blocks of each kernel resident at once
   int resident_leaf_blocks = 1;
+  // balanced: kinematics and broad phase a warp per query where a query has more link
+  // and pair sphere tests than a warp has lanes, else a thread per query.
+  bool warp_roots = false;
+  int pair_stack_capacity = 0;  // balanced, small batches: node pairs per warp's stack
+  int pair_warps = 1;           // warps (stacks) per block of the small-batch kernel
+  int pair_blocks = 1;          // resident blocks of the small-batch kernel
   GpuCheckStats stats;
 
   DeviceBuffer<LinkKinematics> links;
@@ -545,6 +746,21 @@ struct GpuBatchChecker::Impl {
     view.triangles = triangles.get();
     view.pair_a = pair_a.get();
     view.pair_b = pair_b.get();
+    warp_roots = view.link_count + view.pair_count > 32;
+    pair_stack_capacity = 64 * (host.traversal_depth + 1);
+    const std::size_t stack_bytes = pair_stack_capacity * sizeof(int2);  // at most 66 KB
+    pair_warps = static_cast<int>(std::clamp<std::size_t>(
+        properties.sharedMemPerBlockOptin / stack_bytes, 1, kPairWarps));
+    check_cuda(cudaFuncSetAttribute(balanced_warp_per_pair_kernel,
+                                    cudaFuncAttributeMaxDynamicSharedMemorySize,
+                                    static_cast<int>(pair_warps * stack_bytes)),
+               "shared memory of the small-batch kernel");
+    check_cuda(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm,
+                                                             balanced_warp_per_pair_kernel,
+                                                             32 * pair_warps,
+                                                             pair_warps * stack_bytes),
+               "occupancy");
+    pair_blocks = std::max(1, blocks_per_sm) * properties.multiProcessorCount;
   }
 
   Counters read_counters() {
@@ -610,23 +826,36 @@ struct GpuBatchChecker::Impl {
   bool run_balanced(int n, std::size_t job_capacity, std::size_t task_capacity,
                     std::size_t children_capacity, std::size_t leaf_capacity) {
     check_cuda(cudaMemset(verdicts.get(), 0, n), "memset");
-    balanced_roots_kernel<<<blocks_for(n, 128), 128>>>(view, configurations.get(), n, jobs.get(),
-                                                       static_cast<int>(job_capacity), tasks.get(),
-                                                       verdicts.get(), counters.get());
+    if (warp_roots) {
+      balanced_roots_warp_kernel<<<blocks_for(n, kRootWarps), 32 * kRootWarps>>>(
+          view, configurations.get(), n, jobs.get(), static_cast<int>(job_capacity), tasks.get(),
+          verdicts.get(), counters.get());
+    } else {
+      balanced_roots_kernel<<<blocks_for(n, 128), 128>>>(view, configurations.get(), n, jobs.get(),
+                                                         static_cast<int>(job_capacity),
+                                                         tasks.get(), verdicts.get(),
+                                                         counters.get());
+    }
     check_cuda(cudaGetLastError(), "balanced roots kernel");
-    Counters c = read_counters();
-    if (c.jobs_overflow) return false;
-    // The jobs' root tasks fill the queue: as if a round at 0 had emitted them.
-    c.begin = 0;
-    c.tasks = c.jobs;
-    c.rounds = 0;
-    c.queue_full = 0;
-    check_cuda(cudaMemcpy(counters.get(), &c, sizeof(c), cudaMemcpyHostToDevice), "counters");
+    stats.root_lanes = warp_roots ? 32 : 1;
+    const std::size_t small_batch = options.warp_per_pair_up_to != GpuCheckerOptions::kAuto
+                                        ? options.warp_per_pair_up_to
+                                    : warp_roots ? 1024
+                                                 : 1;
+    if (static_cast<std::size_t>(n) <= small_batch) {
+      balanced_warp_per_pair_kernel<<<pair_blocks, 32 * pair_warps,
+                                      pair_warps * pair_stack_capacity * sizeof(int2)>>>(
+          view, jobs.get(), pair_stack_capacity, verdicts.get(), counters.get());
+      check_cuda(cudaGetLastError(), "balanced small-batch kernel");
+      stats.warp_per_pair = true;
+      return !read_counters().jobs_overflow;
+    }
     // Each task may leave up to kTaskSteps + 1 node pairs behind.
     const unsigned max_launch = static_cast<unsigned>(
         std::min<std::size_t>(1u << 20, children_capacity / (kTaskSteps + 1)));
     const unsigned capacity = static_cast<unsigned>(std::min<std::size_t>(task_capacity, ~0u));
-    balanced_advance_kernel<<<1, 1>>>(counters.get(), capacity, max_launch);
+    balanced_start_kernel<<<1, 1>>>(counters.get(), capacity, max_launch);
+    Counters c;
     // Rounds run in bursts without the host; the queue is read between bursts, and a
     // round after the queue ran empty costs three near-empty launches.
     int burst = 4;
@@ -642,6 +871,7 @@ struct GpuBatchChecker::Impl {
       }
       check_cuda(cudaGetLastError(), "balanced traversal kernels");
       c = read_counters();
+      if (c.jobs_overflow) return false;
       if (c.queue_full)
         throw std::runtime_error("balanced traversal: task queue full; lower the batch size");
       if (c.top == 0) break;
@@ -699,11 +929,12 @@ struct GpuBatchChecker::Impl {
       } else if (options.traversal == Traversal::kPacket) {
         run_packet(m);
       } else {
-        Counters before = read_counters();
-        before.jobs = 0;
-        before.jobs_overflow = 0;
-        check_cuda(cudaMemcpy(counters.get(), &before, sizeof(before), cudaMemcpyHostToDevice),
-                   "counters");
+        static_assert(offsetof(Counters, jobs_overflow) == offsetof(Counters, jobs) + 4 &&
+                      offsetof(Counters, next_job) == offsetof(Counters, jobs) + 8);
+        check_cuda(cudaMemsetAsync(reinterpret_cast<char*>(counters.get()) +
+                                       offsetof(Counters, jobs),
+                                   0, 3 * sizeof(unsigned)),
+                   "memset");
         if (!run_balanced(m, job_capacity, task_capacity, children_capacity, leaf_capacity)) {
           if (chunk == 1)
             throw std::runtime_error("balanced traversal: one query needs more jobs than fit");

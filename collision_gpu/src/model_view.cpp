@@ -69,7 +69,8 @@ FlatCollisionModel::FlatCollisionModel(const CollisionModel& model)
     deepest_link = std::max(deepest_link, bvh_depth(bvh));
   }
   environment = append_body(model.environment, &nodes, &triangles);
-  if (deepest_link + std::max(deepest_link, bvh_depth(model.environment)) >= detail::kStackSize) {
+  traversal_depth = deepest_link + std::max(deepest_link, bvh_depth(model.environment));
+  if (traversal_depth >= detail::kStackSize) {
     throw std::invalid_argument("BVHs too deep for the traversal stack of " +
                                 std::to_string(detail::kStackSize) + " entries");
   }

@@ -23,6 +23,7 @@ const char* base_type_name(BaseType type) {
 }
 
 double wrap_angle(double angle) {
+  if (angle >= -kPi && angle < kPi) return angle;  // the common case, without a division
   double wrapped = std::fmod(angle + kPi, 2 * kPi);
   if (wrapped < 0) wrapped += 2 * kPi;
   return wrapped - kPi;

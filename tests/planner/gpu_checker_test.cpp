@@ -26,11 +26,14 @@ namespace {
 struct Case {
   std::string scene;
   Traversal traversal;
+  bool small_batch = false;  // balanced: the whole batch a warp per body pair, no rounds
 };
 
-void PrintTo(const Case& c, std::ostream* out) {
-  *out << c.scene << " " << traversal_name(c.traversal);
+std::string case_name(const Case& c) {
+  return std::string(traversal_name(c.traversal)) + (c.small_batch ? "_small_batch" : "");
 }
+
+void PrintTo(const Case& c, std::ostream* out) { *out << c.scene << " " << case_name(c); }
 
 class GpuMatchesCpu : public ::testing::TestWithParam<Case> {};
 
@@ -41,6 +44,7 @@ TEST_P(GpuMatchesCpu, OnASeededBatch) {
   const std::vector<float> q = testing::sample_configurations(scene, n, 23);
   CheckerOptions options;
   options.gpu.traversal = GetParam().traversal;
+  options.gpu.warp_per_pair_up_to = GetParam().small_batch ? n : 0;
   std::string notice;
   const std::unique_ptr<CollisionChecker> checker =
       make_collision_checker(scene, "gpu", options, &notice);
@@ -51,6 +55,7 @@ TEST_P(GpuMatchesCpu, OnASeededBatch) {
   gpu->check(q.data(), n, on_gpu.data());
   EXPECT_GT(gpu->last_stats().bv_tests, 0u) << "the GPU did no work";
   EXPECT_GT(gpu->last_stats().milliseconds, 0.0);
+  EXPECT_EQ(gpu->last_stats().warp_per_pair, GetParam().small_batch);
   CpuChecker cpu(scene);
   cpu.check(q.data(), n, on_cpu.data());
   FclChecker fcl(scene);
@@ -60,7 +65,7 @@ TEST_P(GpuMatchesCpu, OnASeededBatch) {
   EXPECT_EQ(c.extra_outside_band, 0u);
   EXPECT_LE(c.disagreements, n / 200)
       << "GPU and CPU run the same code: they should nearly always agree";
-  std::cout << GetParam().scene << " " << traversal_name(GetParam().traversal) << ": "
+  std::cout << GetParam().scene << " " << case_name(GetParam()) << ": "
             << c.disagreements << " disagreements with the cpu backend, "
             << gpu->last_stats().milliseconds << " ms, " << gpu->last_stats().bv_tests
             << " BV tests, " << gpu->last_stats().triangle_tests << " triangle tests on "
@@ -72,6 +77,7 @@ std::vector<Case> all_cases() {
   for (const std::string& scene : testing::shipped_scene_files()) {
     for (const Traversal t : {Traversal::kBasic, Traversal::kPacket, Traversal::kBalanced})
       cases.push_back({scene, t});
+    cases.push_back({scene, Traversal::kBalanced, true});
   }
   return cases;
 }
@@ -79,7 +85,7 @@ std::vector<Case> all_cases() {
 INSTANTIATE_TEST_SUITE_P(Scenes, GpuMatchesCpu, ::testing::ValuesIn(all_cases()),
                          [](const ::testing::TestParamInfo<Case>& info) {
                            return testing::scene_test_name(info.param.scene) + "_" +
-                                  traversal_name(info.param.traversal);
+                                  case_name(info.param);
                          });
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(GpuMatchesCpu);
 
@@ -95,17 +101,35 @@ TEST(GpuChecker, ChunksBatchesOverTheMemoryCap) {
   const Scene scene = load_scene(testing::project_root() + "/scenes/humanoid.yaml");
   const std::size_t n = 3000;
   const std::vector<float> q = testing::sample_configurations(scene, n, 29);
-  for (const Traversal t : {Traversal::kBasic, Traversal::kPacket, Traversal::kBalanced}) {
+  for (const Case c : {Case{"", Traversal::kBasic}, Case{"", Traversal::kPacket},
+                       Case{"", Traversal::kBalanced}, Case{"", Traversal::kBalanced, true}}) {
     GpuCheckerOptions whole, capped;
-    whole.traversal = capped.traversal = t;
+    whole.traversal = capped.traversal = c.traversal;
+    whole.warp_per_pair_up_to = capped.warp_per_pair_up_to = c.small_batch ? n : 0;
     capped.memory_cap_bytes = 256 * 1024;
     GpuChecker a(scene, whole), b(scene, capped);
     std::vector<std::uint8_t> va(n), vb(n);
     a.check(q.data(), n, va.data());
     b.check(q.data(), n, vb.data());
-    EXPECT_EQ(a.last_stats().chunks, 1u) << traversal_name(t);
-    EXPECT_GT(b.last_stats().chunks, 1u) << traversal_name(t);
-    EXPECT_EQ(va, vb) << traversal_name(t);
+    EXPECT_EQ(a.last_stats().chunks, 1u) << case_name(c);
+    EXPECT_GT(b.last_stats().chunks, 1u) << case_name(c);
+    EXPECT_EQ(va, vb) << case_name(c);
+  }
+}
+
+// The balanced traversal's kinematics and broad phase run a warp per query for an arm
+// with hundreds of sphere tests, a thread per query for a rigid body; both are compared
+// with the cpu backend above, this asserts which ran.
+TEST(GpuChecker, SpreadsAnArmsSphereTestsOverAWarp) {
+  REQUIRE_GPU();
+  for (const auto& [file, lanes] : {std::pair<std::string, int>{"pr2_base_arm.yaml", 32},
+                                    std::pair<std::string, int>{"piano.yaml", 1}}) {
+    const Scene scene = load_scene(testing::project_root() + "/scenes/" + file);
+    const std::vector<float> q = testing::sample_configurations(scene, 64, 31);
+    GpuChecker gpu(scene, {});
+    std::vector<std::uint8_t> verdicts(64);
+    gpu.check(q.data(), 64, verdicts.data());
+    EXPECT_EQ(gpu.last_stats().root_lanes, lanes) << file;
   }
 }
 

@@ -15,6 +15,7 @@
 #include "gplanner/planner/motion_bound.h"
 #include "gplanner/planner/scene.h"
 #include "gplanner/planner/scene_metric.h"
+#include "planner/costly_call_checker.h"
 #include "planner/scene_test_support.h"
 #include "test_support.h"
 
@@ -126,6 +127,32 @@ TEST(LocalPlanner, BatchedChecksEqualCheckingEverySampleRigid) {
 
 TEST(LocalPlanner, BatchedChecksEqualCheckingEverySampleArticulated) {
   expect_batched_equals_one_by_one("pr2_base_arm.yaml", 0.3);
+}
+
+// Where calls cost as much as many samples, a first call of the coarsest samples of
+// every motion finds most invalid motions: the same verdicts from fewer samples, in two
+// calls where one would hold them all.
+TEST(LocalPlanner, AProbeCallFindsMostInvalidMotionsFirst) {
+  const Scene scene = load("pr2_base_arm.yaml");
+  const int w = scene.space.width();
+  const std::vector<float> pool = testing::sample_configurations(scene, 400, 13);
+  const std::size_t count = 200;  // motions across the space: most collide somewhere
+  std::vector<float> a(pool.begin(), pool.begin() + count * w), b(pool.begin() + count * w,
+                                                                   pool.end());
+  CpuChecker free_calls(scene);
+  testing::CostlyCallChecker costly_calls(scene, 1024);
+  LocalPlanner plain(scene, &free_calls), probing(scene, &costly_calls);
+  std::vector<std::uint8_t> expected(count), invalid(count);
+  plain.check_motions(a.data(), b.data(), count, expected.data());
+  probing.check_motions(a.data(), b.data(), count, invalid.data());
+  EXPECT_EQ(invalid, expected);
+  const std::size_t bad = std::count(expected.begin(), expected.end(), 1);
+  EXPECT_GT(bad, count / 2);
+  EXPECT_LT(bad, count);
+  ASSERT_GT(plain.stats().samples, 2 * 1024u) << "too few samples for a probe";
+  EXPECT_EQ(plain.stats().batches, 1u);
+  EXPECT_EQ(probing.stats().batches, 2u);
+  EXPECT_LT(probing.stats().samples, plain.stats().samples / 2);
 }
 
 // A stop ends a large call (a PRM round's every edge) before any sample is checked, and

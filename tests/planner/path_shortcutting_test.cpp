@@ -1,5 +1,5 @@
 // Path shortcutting: a lazy PRM path shortened on checkers whose calls cost nothing,
-// a little and as much as many samples (as the GPU's do): every shortened path is free
+// a few thousand samples and as much as many samples (as the GPU's do): every shortened path is free
 // at a tenth of the edge resolution; checking the next round's shortcuts with this
 // round's fine check gives the same path in fewer calls; checking every shortcut finely
 // at once takes one call a round.
@@ -14,26 +14,14 @@
 #include "gplanner/planner/roadmap_planner.h"
 #include "gplanner/planner/scene.h"
 #include "gplanner/planner/scene_metric.h"
+#include "planner/costly_call_checker.h"
 #include "planner/scene_test_support.h"
 #include "test_support.h"
 
 namespace gplanner {
 namespace {
 
-// The cpu backend, saying that a call costs as much as `per_call` configurations.
-class CostlyCallChecker : public CollisionChecker {
- public:
-  CostlyCallChecker(const Scene& scene, std::size_t per_call) : cpu_(scene), per_call_(per_call) {}
-  std::string backend() const override { return cpu_.backend(); }
-  void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override {
-    cpu_.check(configurations, n, verdicts);
-  }
-  std::size_t configurations_per_call_cost() const override { return per_call_; }
-
- private:
-  CpuChecker cpu_;
-  std::size_t per_call_;
-};
+using testing::CostlyCallChecker;
 
 TEST(PathShortcutting, FewerCallsWhereCallsCostMoreThanSamples) {
   const Scene scene = load_scene(testing::project_root() + "/scenes/pr2_base_arm.yaml");
@@ -49,10 +37,10 @@ TEST(PathShortcutting, FewerCallsWhereCallsCostMoreThanSamples) {
   ASSERT_GT(found.path.size() / scene.space.width(), 3u);
 
   const int rounds = 3, candidates = 64;
-  // Calls cost: nothing (checked as before), as much as 1 configuration (the next
+  // Calls cost: nothing (checked as before), as much as 4,096 configurations (the next
   // round's shortcuts checked with this round's fine check), as much as 2^20 (every
   // shortcut checked finely at once where that fits one call).
-  const std::size_t costs[] = {0, 1, 1u << 20};
+  const std::size_t costs[] = {0, 4096, 1u << 20};
   std::vector<float> paths[3];
   std::size_t calls[3];
   for (int c = 0; c < 3; ++c) {

@@ -27,6 +27,15 @@ struct GpuCheckerOptions {
   // Device memory the checker may use for one chunk of queries (configurations,
   // verdicts, work queues); 0: half of the free memory. Larger batches are chunked.
   std::size_t memory_cap_bytes = 0;
+  // balanced: batches of up to this many queries are traversed a warp per body pair in
+  // one kernel (the pair's node pairs tested 32 at a time) instead of in rounds of
+  // tasks; a small batch's time is the latency of its longest chain of tests, which
+  // rounds of launches lengthen. 0: always rounds. kAuto, as measured on an H100
+  // (bench/RESULTS.md): up to 1,024 queries for robots with more link and pair tests
+  // than a warp has lanes (many small body pairs), single queries for the others (whose
+  // one body pair with the environment rounds spread over more than a warp).
+  static constexpr std::size_t kAuto = ~std::size_t(0);
+  std::size_t warp_per_pair_up_to = kAuto;
 };
 
 // What the last check() did.
@@ -34,6 +43,8 @@ struct GpuCheckStats {
   double milliseconds = 0;  // GPU time of the whole batch (events around all chunks)
   std::size_t chunks = 0;
   std::size_t rounds = 0;  // balanced: launches of the task kernel (each a host round trip)
+  int root_lanes = 0;      // balanced: threads per query for kinematics and broad phase
+  bool warp_per_pair = false;  // balanced: the small-batch kernel ran (no rounds)
   unsigned long long bv_tests = 0;
   unsigned long long triangle_tests = 0;
 };

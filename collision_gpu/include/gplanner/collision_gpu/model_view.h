@@ -57,6 +57,9 @@ struct FlatCollisionModel {
   std::vector<BvhNode> nodes;
   std::vector<BvhTriangle> triangles;
   std::vector<std::int32_t> pair_a, pair_b;
+  // Deepest node pair any traversal can reach: a link's BVH depth plus the deeper of the
+  // links' and the environment's.
+  int traversal_depth = 0;
 };
 
 // Deepest node of a BVH (root: 1); traversal stacks are sized from it.

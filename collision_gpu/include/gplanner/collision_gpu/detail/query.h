@@ -50,24 +50,26 @@ GP_HD Xf base_pose(const CollisionModelView& m, const float* q) {
   return X_WB;
 }
 
+// X_PL, link l (l >= 1) in its parent's frame, for configuration q.
+GP_HD Xf joint_transform(const CollisionModelView& m, int l, const float* q) {
+  const LinkKinematics& link = m.links[l];
+  Xf X_PL = load_transform(link.X_PJ);
+  if (link.motion != LinkMotion::kFixed) {
+    const float value = link.multiplier * (link.source >= 0 ? q[link.source] : 0.0f) + link.offset;
+    const V3f axis{link.axis[0], link.axis[1], link.axis[2]};
+    if (link.motion == LinkMotion::kRevolute) {
+      X_PL.R = X_PL.R * geometry::axis_angle(axis, value);
+    } else {
+      X_PL.t = X_PL.t + X_PL.R * (value * axis);
+    }
+  }
+  return X_PL;
+}
+
 // X_WL of every link (shape: [m.link_count]).
 GP_HD void link_poses(const CollisionModelView& m, const float* q, Xf* X_WL) {
   X_WL[0] = base_pose(m, q);
-  for (int l = 1; l < m.link_count; ++l) {
-    const LinkKinematics& link = m.links[l];
-    Xf X_PL = load_transform(link.X_PJ);
-    if (link.motion != LinkMotion::kFixed) {
-      const float value =
-          link.multiplier * (link.source >= 0 ? q[link.source] : 0.0f) + link.offset;
-      const V3f axis{link.axis[0], link.axis[1], link.axis[2]};
-      if (link.motion == LinkMotion::kRevolute) {
-        X_PL.R = X_PL.R * geometry::axis_angle(axis, value);
-      } else {
-        X_PL.t = X_PL.t + X_PL.R * (value * axis);
-      }
-    }
-    X_WL[l] = X_WL[link.parent] * X_PL;
-  }
+  for (int l = 1; l < m.link_count; ++l) X_WL[l] = X_WL[m.links[l].parent] * joint_transform(m, l, q);
 }
 
 GP_HD geometry::Vec3<double> widen(V3f p) { return {double(p.x), double(p.y), double(p.z)}; }
@@ -191,20 +193,31 @@ GP_HD V3f sphere_center_W(const CollisionModelView& m, int link, const Xf& X_WL)
   return X_WL * V3f{s.center[0], s.center[1], s.center[2]};
 }
 
-// Broad phase of link l against the environment: its bounding sphere against the
-// environment's root box.
-GP_HD bool link_may_touch_environment(const CollisionModelView& m, int l, const Xf& X_WL) {
+// Broad phase of link l against the environment: its bounding sphere (centre c_W in the
+// world) against the environment's root box.
+GP_HD bool sphere_may_touch_environment(const CollisionModelView& m, int l, V3f c_W) {
   if (m.environment.node_offset < 0 || m.link_bodies[l].node_offset < 0) return false;
-  return geometry::sphere_overlaps_obb(sphere_center_W(m, l, X_WL), m.link_spheres[l].radius,
+  return geometry::sphere_overlaps_obb(c_W, m.link_spheres[l].radius,
                                        node_box(m.nodes[m.environment.node_offset]), m.margin);
 }
 
-// Broad phase of a checked link pair: bounding sphere against bounding sphere.
+GP_HD bool link_may_touch_environment(const CollisionModelView& m, int l, const Xf& X_WL) {
+  return sphere_may_touch_environment(m, l, sphere_center_W(m, l, X_WL));
+}
+
+// Broad phase of a checked link pair: bounding sphere against bounding sphere (centres
+// ca_W and cb_W in the world).
+GP_HD bool spheres_may_touch(const CollisionModelView& m, int p, V3f ca_W, V3f cb_W) {
+  const V3f d = ca_W - cb_W;
+  const float reach = m.link_spheres[m.pair_a[p]].radius + m.link_spheres[m.pair_b[p]].radius +
+                      m.margin;
+  return geometry::dot(d, d) <= reach * reach;
+}
+
 GP_HD bool pair_may_touch(const CollisionModelView& m, int p, const Xf* X_WL) {
   const int la = m.pair_a[p], lb = m.pair_b[p];
-  const V3f d = sphere_center_W(m, la, X_WL[la]) - sphere_center_W(m, lb, X_WL[lb]);
-  const float reach = m.link_spheres[la].radius + m.link_spheres[lb].radius + m.margin;
-  return geometry::dot(d, d) <= reach * reach;
+  return spheres_may_touch(m, p, sphere_center_W(m, la, X_WL[la]),
+                           sphere_center_W(m, lb, X_WL[lb]));
 }
 
 // The whole query: true when configuration q (shape: [m.width]) collides with the

@@ -118,18 +118,28 @@ TEST(GpuChecker, ChunksBatchesOverTheMemoryCap) {
 }
 
 // The balanced traversal's kinematics and broad phase run a warp per query for an arm
-// with hundreds of sphere tests, a thread per query for a rigid body; both are compared
-// with the cpu backend above, this asserts which ran.
-TEST(GpuChecker, SpreadsAnArmsSphereTestsOverAWarp) {
+// with hundreds of sphere tests, a thread per query for a rigid body; small batches run
+// a warp per body pair in one kernel (by default up to 1,024 queries of an arm, 32 of a
+// rigid body). The verdicts of every kind are compared with the cpu backend above; this
+// asserts which kind ran.
+TEST(GpuChecker, ChoosesItsKernelsByRobotAndBatchSize) {
   REQUIRE_GPU();
-  for (const auto& [file, lanes] : {std::pair<std::string, int>{"pr2_base_arm.yaml", 32},
-                                    std::pair<std::string, int>{"piano.yaml", 1}}) {
-    const Scene scene = load_scene(testing::project_root() + "/scenes/" + file);
-    const std::vector<float> q = testing::sample_configurations(scene, 64, 31);
+  struct Expect {
+    std::string scene;
+    std::size_t n;
+    int root_lanes;
+    bool warp_per_pair;
+  };
+  for (const Expect& e : {Expect{"pr2_base_arm.yaml", 64, 32, true},
+                          Expect{"pr2_base_arm.yaml", 2000, 32, false},
+                          Expect{"piano.yaml", 8, 1, true}, Expect{"piano.yaml", 64, 1, false}}) {
+    const Scene scene = load_scene(testing::project_root() + "/scenes/" + e.scene);
+    const std::vector<float> q = testing::sample_configurations(scene, e.n, 31);
     GpuChecker gpu(scene, {});
-    std::vector<std::uint8_t> verdicts(64);
-    gpu.check(q.data(), 64, verdicts.data());
-    EXPECT_EQ(gpu.last_stats().root_lanes, lanes) << file;
+    std::vector<std::uint8_t> verdicts(e.n);
+    gpu.check(q.data(), e.n, verdicts.data());
+    EXPECT_EQ(gpu.last_stats().root_lanes, e.root_lanes) << e.scene << " " << e.n;
+    EXPECT_EQ(gpu.last_stats().warp_per_pair, e.warp_per_pair) << e.scene << " " << e.n;
   }
 }
 

@@ -24,7 +24,7 @@ const char* kUsage =
     "      (exit 3 when it is broken); --repeat checks the batch R times and reports the\n"
     "      median time; --small-batch: the balanced traversal runs batches of up to N\n"
     "      queries in one kernel, a warp per body pair (default: 1024 for robots with\n"
-    "      many links, 32 for rigid ones; 0: never); --out\n"
+    "      many links, 10 for rigid ones; 0: never); --out\n"
     "      writes each configuration's values and its\n"
     "      verdict (1 collision, 0 free), one per line; --json ends with a JSON summary\n"
     "  gplan plan SCENE [--planner lazyprm|prm] [--backend gpu|cpu|fcl] [--seed S]\n"

@@ -841,7 +841,7 @@ struct GpuBatchChecker::Impl {
     const std::size_t small_batch = options.warp_per_pair_up_to != GpuCheckerOptions::kAuto
                                         ? options.warp_per_pair_up_to
                                     : warp_roots ? 1024
-                                                 : 32;
+                                                 : 10;
     if (static_cast<std::size_t>(n) <= small_batch) {
       balanced_warp_per_pair_kernel<<<pair_blocks, 32 * pair_warps,
                                       pair_warps * pair_stack_capacity * sizeof(int2)>>>(

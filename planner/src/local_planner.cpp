@@ -148,7 +148,7 @@ bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t
       const std::size_t n = std::min(options_.max_batch_samples, picks.size() - first);
       samples.resize(n * width);
       parallel_for(
-          n, 0,
+          n, resolve_thread_count(0),
           [&](std::size_t begin, std::size_t end, int) {
             for (std::size_t i = begin; i < end; ++i) {
               const auto [e, j] = picks[first + i];
@@ -156,7 +156,7 @@ bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t
                                 static_cast<double>(j) / segment_count[e], &samples[i * width]);
             }
           },
-          256);
+          1024);
       verdicts.assign(n, 0);
       checker_->check(samples.data(), n, verdicts.data());
       ++stats_.batches;

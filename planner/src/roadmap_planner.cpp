@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gplanner/planner/graph_search.h"
+#include "gplanner/planner/parallel_for.h"
 #include "gplanner/planner/path_shortcutting.h"
 #include "gplanner/planner/scene.h"
 
@@ -139,15 +140,26 @@ std::size_t RoadmapPlanner::connect(PlanResult* result) {
   for (std::size_t first = std::min(connected_, n); first < n;) {
     const std::size_t end = std::min(n, first + kChunk);
     neighbors_->nearest_of_new(roadmap_.vertices().data(), end, first, k, &nearest);
+    // The edges' lengths on all cores, then the edges themselves in order.
+    std::vector<float> lengths(nearest.size());
+    parallel_for(
+        end - first, resolve_thread_count(0),
+        [&](std::size_t begin, std::size_t stop, int) {
+          for (std::size_t i = begin; i < stop; ++i) {
+            for (int j = 0; j < k && nearest[i * k + j] >= 0; ++j) {
+              lengths[i * k + j] = configuration_distance(metric, roadmap_.vertex(first + i),
+                                                          roadmap_.vertex(nearest[i * k + j]));
+            }
+          }
+        },
+        512);
     roadmap_.reserve_edges(roadmap_.edge_count() + (end - first) * k);
     for (std::size_t v = first; v < end; ++v) {
       for (int j = 0; j < k; ++j) {
         const int w = nearest[(v - first) * k + j];
         if (w < 0) break;
-        const float length =
-            configuration_distance(metric, roadmap_.vertex(v), roadmap_.vertex(w));
         if (roadmap_.add_edge(static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(w),
-                              length) >= 0) {
+                              lengths[(v - first) * k + j]) >= 0) {
           ++added;
         }
       }

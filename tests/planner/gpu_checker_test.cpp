@@ -119,7 +119,7 @@ TEST(GpuChecker, ChunksBatchesOverTheMemoryCap) {
 
 // The balanced traversal's kinematics and broad phase run a warp per query for an arm
 // with hundreds of sphere tests, a thread per query for a rigid body; small batches run
-// a warp per body pair in one kernel (by default up to 1,024 queries of an arm, 32 of a
+// a warp per body pair in one kernel (by default up to 1,024 queries of an arm, 10 of a
 // rigid body). The verdicts of every kind are compared with the cpu backend above; this
 // asserts which kind ran.
 TEST(GpuChecker, ChoosesItsKernelsByRobotAndBatchSize) {
@@ -132,7 +132,7 @@ TEST(GpuChecker, ChoosesItsKernelsByRobotAndBatchSize) {
   };
   for (const Expect& e : {Expect{"pr2_base_arm.yaml", 64, 32, true},
                           Expect{"pr2_base_arm.yaml", 2000, 32, false},
-                          Expect{"piano.yaml", 8, 1, true}, Expect{"piano.yaml", 64, 1, false}}) {
+                          Expect{"piano.yaml", 8, 1, true}, Expect{"piano.yaml", 32, 1, false}}) {
     const Scene scene = load_scene(testing::project_root() + "/scenes/" + e.scene);
     const std::vector<float> q = testing::sample_configurations(scene, e.n, 31);
     GpuChecker gpu(scene, {});

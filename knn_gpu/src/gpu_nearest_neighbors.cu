@@ -31,6 +31,9 @@ int blocks_for(std::size_t threads, int block) {
 }
 
 constexpr int kSearchBlock = 128;  // threads per search block: 4 warps, 4 query tiles
+// Fewer query tiles than this (at most 32,768 points) are searched in slices (up to
+// detail::kMaxSlices), so that about this many warps run.
+constexpr int kBusyWarps = 1024;
 constexpr std::size_t kSharedLimitBytes = 48 * 1024;
 
 }  // namespace
@@ -58,6 +61,8 @@ struct GpuNearestNeighbors::Impl {
   DeviceBuffer<float> boxes;                    // shape [tiles, 2, width]
   DeviceBuffer<int> indices;                    // shape [n, k]
   DeviceBuffer<float> distances;                // shape [n, k]
+  DeviceBuffer<int> part_indices;               // shape [slices, tiles * 32, k]
+  DeviceBuffer<float> part_distances;           // shape [slices, tiles * 32, k]
   DeviceBuffer<unsigned long long> counters;    // shape [3]
   PinnedBuffer<int> h_indices;                  // shape [n, k]
   PinnedBuffer<float> h_distances;              // shape [n, k]
@@ -86,15 +91,17 @@ struct GpuNearestNeighbors::Impl {
 
   template <int K>
   void launch_search(const detail::KnnView& view, int k, float radius, int warps_per_block,
-                     std::size_t shared_bytes) {
-    const int blocks = blocks_for(view.tiles, warps_per_block);
+                     std::size_t shared_bytes, int slices) {
+    const dim3 blocks(blocks_for(view.tiles, warps_per_block), slices);
     const int threads = warps_per_block * detail::kTile;
+    int* out_i = slices > 1 ? part_indices.get() : indices.get();
+    float* out_d = slices > 1 ? part_distances.get() : distances.get();
     if (view.metric.base == MetricBase::kFloating) {
       detail::all_knn_kernel<K, true><<<blocks, threads, shared_bytes, stream>>>(
-          view, k, radius, indices.get(), distances.get(), counters.get());
+          view, k, radius, out_i, out_d, counters.get());
     } else {
       detail::all_knn_kernel<K, false><<<blocks, threads, shared_bytes, stream>>>(
-          view, k, radius, indices.get(), distances.get(), counters.get());
+          view, k, radius, out_i, out_d, counters.get());
     }
   }
 
@@ -139,6 +146,11 @@ struct GpuNearestNeighbors::Impl {
     boxes.reserve(static_cast<std::size_t>(tiles) * 2 * width);
     indices.reserve(count * k);
     distances.reserve(count * k);
+    const int slices = std::clamp(kBusyWarps / tiles, 1, detail::kMaxSlices);
+    if (slices > 1) {
+      part_indices.reserve(static_cast<std::size_t>(slices) * rows * k);
+      part_distances.reserve(static_cast<std::size_t>(slices) * rows * k);
+    }
     h_indices.reserve(count * k);
     h_distances.reserve(count * k);
     std::size_t sort_bytes = 0;
@@ -189,13 +201,19 @@ struct GpuNearestNeighbors::Impl {
     const std::size_t shared_bytes = warps_per_block * warp_bytes;
     check_cuda(cudaEventRecord(search_start, stream), "event");
     if (k <= 16) {
-      launch_search<16>(view, k, radius, warps_per_block, shared_bytes);
+      launch_search<16>(view, k, radius, warps_per_block, shared_bytes, slices);
     } else if (k <= 32) {
-      launch_search<32>(view, k, radius, warps_per_block, shared_bytes);
+      launch_search<32>(view, k, radius, warps_per_block, shared_bytes, slices);
     } else {
-      launch_search<kMaxGpuNeighbors>(view, k, radius, warps_per_block, shared_bytes);
+      launch_search<kMaxGpuNeighbors>(view, k, radius, warps_per_block, shared_bytes, slices);
     }
     check_cuda(cudaGetLastError(), "search kernel");
+    if (slices > 1) {
+      detail::merge_slices_kernel<<<blocks_for(count, 128), 128, 0, stream>>>(
+          n, rows, k, slices, part_indices.get(), part_distances.get(), indices.get(),
+          distances.get());
+      check_cuda(cudaGetLastError(), "merge kernel");
+    }
     check_cuda(cudaEventRecord(search_stop, stream), "event");
 
     check_cuda(cudaMemcpyAsync(h_indices.get(), indices.get(), count * k * sizeof(int),
@@ -216,6 +234,7 @@ struct GpuNearestNeighbors::Impl {
     stats.milliseconds = total_ms;
     stats.search_milliseconds = search_ms;
     stats.tiles = tiles;
+    stats.slices = slices;
     stats.tiles_visited = h_counters.get()[0];
     stats.candidate_pairs = h_counters.get()[1];
     stats.distance_evaluations = h_counters.get()[2];

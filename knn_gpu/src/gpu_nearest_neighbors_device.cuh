@@ -214,8 +214,12 @@ __device__ inline void stage_tile(const KnnView& v, int tile, int lane, float* r
 // floating_base_lower_bound(), lanes taking candidates and the warp walking the lanes
 // that want the tile (one ballot each), and only those that pass get the exact
 // distance; other metrics evaluate every candidate exactly.
-// d_indices, d_distances: shape [n, k] in input order; d_counters: shape [3] (tiles
-// loaded, candidate pairs, exact distance evaluations). At k <= 16, six blocks of four
+// With several slices (gridDim.y; few tiles, so that one warp per tile would leave the
+// GPU idle), slice y visits only the outward steps s with s % slices == y and writes its
+// own k best, unmerged (merge_slices_kernel merges them).
+// d_indices, d_distances: shape [n, k] in input order, or [slices, tiles * 32, k] with
+// several slices (empty slots: kNoNeighbor); d_counters: shape [3] (tiles loaded,
+// candidate pairs, exact distance evaluations). At k <= 16, six blocks of four
 // warps per SM (85 registers a thread) keep 100,000 points' 3,125 warps resident on 132
 // SMs at once.
 template <int K, bool kFloatingBase>
@@ -226,6 +230,7 @@ __global__ void __launch_bounds__(128, K <= 16 ? 6 : 2)
   const int warp = threadIdx.x / kTile, lane = threadIdx.x % kTile;
   const int tile = blockIdx.x * (blockDim.x / kTile) + warp;
   if (tile >= v.tiles) return;  // whole warps only
+  const int slices = gridDim.y, slice = blockIdx.y;
   const ConfigurationMetric& m = v.metric;
   const int width = v.width, stride = v.stride;
   float* query_rows = shared + warp * knn_shared_floats_per_warp(stride);
@@ -258,7 +263,7 @@ __global__ void __launch_bounds__(128, K <= 16 ? 6 : 2)
     const int s = first + lane;
     const int t = tile_outward(tile, s);
     bool candidate = false;
-    if (s < 2 * v.tiles && t >= 0 && t < v.tiles) {
+    if (s < 2 * v.tiles && s % slices == slice && t >= 0 && t < v.tiles) {
       const float* lo = v.d_boxes + static_cast<std::size_t>(t) * 2 * width;
       candidate = !prunable(box_box_lower_bound(m, home_lo, home_hi, lo, lo + width), warp_cutoff);
     }
@@ -319,12 +324,13 @@ __global__ void __launch_bounds__(128, K <= 16 ? 6 : 2)
   }
 
   if (my_id >= 0) {
-    int* out_i = d_indices + static_cast<std::size_t>(my_id) * k;
-    float* out_d = d_distances + static_cast<std::size_t>(my_id) * k;
+    const std::size_t row = static_cast<std::size_t>(slice) * v.tiles * kTile + my_id;
+    int* out_i = d_indices + row * k;
+    float* out_d = d_distances + row * k;
 #pragma unroll
     for (int r = 0; r < K; ++r) {
       if (r < k) {
-        out_i[r] = best_i[r] == kNoNeighbor ? -1 : best_i[r];
+        out_i[r] = best_i[r] == kNoNeighbor && slices == 1 ? -1 : best_i[r];
         out_d[r] = best_d[r];
       }
     }
@@ -337,6 +343,36 @@ __global__ void __launch_bounds__(128, K <= 16 ? 6 : 2)
     atomicAdd(d_counters, loaded);
     atomicAdd(d_counters + 1, pairs);
     atomicAdd(d_counters + 2, evaluations);
+  }
+}
+
+constexpr int kMaxSlices = 16;
+
+// Merges the slices' lists (each sorted by neighbor_before, each candidate in one slice
+// only) into each point's k best: a thread per point. part_i, part_d: shape
+// [slices, rows, k]; d_indices, d_distances: shape [n, k].
+__global__ void merge_slices_kernel(int n, int rows, int k, int slices, const int* part_i,
+                                    const float* part_d, int* d_indices, float* d_distances) {
+  const int p = blockIdx.x * blockDim.x + threadIdx.x;
+  if (p >= n) return;
+  int next[kMaxSlices];
+  for (int s = 0; s < slices; ++s) next[s] = 0;
+  for (int r = 0; r < k; ++r) {
+    int best = -1;
+    float best_d = INFINITY;
+    int best_i = kNoNeighbor;
+    for (int s = 0; s < slices; ++s) {
+      if (next[s] >= k) continue;
+      const std::size_t at = (static_cast<std::size_t>(s) * rows + p) * k + next[s];
+      if (best < 0 || neighbor_before(part_d[at], part_i[at], best_d, best_i)) {
+        best = s;
+        best_d = part_d[at];
+        best_i = part_i[at];
+      }
+    }
+    ++next[best];
+    d_indices[static_cast<std::size_t>(p) * k + r] = best_i == kNoNeighbor ? -1 : best_i;
+    d_distances[static_cast<std::size_t>(p) * k + r] = best_d;
   }
 }
 

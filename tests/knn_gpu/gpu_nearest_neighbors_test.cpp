@@ -46,11 +46,12 @@ NeighborTable expect_gpu_matches_cpu(GpuNearestNeighbors& gpu, const Configurati
   EXPECT_EQ(stats.tiles, (n + 31) / 32);
   const NeighborTable on_cpu = all_nearest_neighbors_cpu(metric, points.data(), n, k, radius);
   EXPECT_TRUE(same_up_to_ties(on_cpu, on_gpu, radius));
-  std::cout << n << " points, k = " << k << ": " << stats.milliseconds << " ms ("
-            << stats.search_milliseconds << " ms search), " << stats.candidate_pairs
-            << " candidate pairs (" << 100.0 * stats.candidate_pairs / (double(n) * n)
-            << "% of n^2), " << stats.distance_evaluations << " exact distances, "
-            << stats.tiles_visited << " tiles loaded on " << gpu.device_name() << "\n";
+  std::cout << n << " points, k = " << k << " (" << stats.slices
+            << " slices): " << stats.milliseconds << " ms (" << stats.search_milliseconds
+            << " ms search), " << stats.candidate_pairs << " candidate pairs ("
+            << 100.0 * stats.candidate_pairs / (double(n) * n) << "% of n^2), "
+            << stats.distance_evaluations << " exact distances, " << stats.tiles_visited
+            << " tiles loaded on " << gpu.device_name() << "\n";
   return on_gpu;
 }
 
@@ -78,6 +79,19 @@ TEST(KnnGpu, MatchesCpuReferenceJointsOnly) {
   GpuNearestNeighbors gpu;
   expect_gpu_matches_cpu(gpu, joints_metric(7), random_configurations(joints_metric(7), 2000, 105),
                          20);
+}
+
+// Small sets are searched in slices of the candidate tiles, merged after (so that the
+// GPU has work for more than one warp per 32 points); large ones in one. Both match the
+// CPU reference.
+TEST(KnnGpu, MatchesCpuReferenceInSlicesAndInOne) {
+  REQUIRE_GPU();
+  GpuNearestNeighbors gpu;
+  const ConfigurationMetric m = planar_metric(7);  // like pr2_base_arm
+  expect_gpu_matches_cpu(gpu, m, random_configurations(m, 2002, 110), 15);
+  EXPECT_EQ(gpu.last_stats().slices, 16);
+  expect_gpu_matches_cpu(gpu, m, random_configurations(m, 40000, 111), 15);
+  EXPECT_EQ(gpu.last_stats().slices, 1);
 }
 
 TEST(KnnGpu, BreaksExactTiesLikeTheCpuReference) {

@@ -62,6 +62,7 @@ struct GpuKnnStats {
   double milliseconds = 0;                 // GPU time of the whole call: upload to download
   double search_milliseconds = 0;          // the search kernel alone
   std::size_t tiles = 0;                   // points cut into tiles of 32 after the spatial sort
+  int slices = 1;  // searches per query tile over disjoint candidate tiles, then merged
   unsigned long long tiles_visited = 0;    // candidate tiles loaded, over all query tiles
   unsigned long long candidate_pairs = 0;  // (point, candidate) pairs considered
   unsigned long long distance_evaluations = 0;  // exact metric evaluations among those

@@ -81,6 +81,10 @@ std::string gpu_details(gplanner::CollisionChecker* checker) {
       << " triangle tests";
   if (stats.rounds) out << ", " << stats.rounds << " rounds";
   if (stats.warp_per_pair) out << ", one kernel (small batch)";
+  if (!stats.round_tasks.empty()) {
+    out << "; tasks per round:";
+    for (const unsigned tasks : stats.round_tasks) out << " " << tasks;
+  }
   return out.str();
 }
 

@@ -4,6 +4,7 @@
 #include <cuda_runtime.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstddef>
 #include <cub/device/device_radix_sort.cuh>
 #include <stdexcept>
@@ -22,6 +23,8 @@ void check_cuda(cudaError_t status, const char* what) { cuda::check(status, "CUD
 
 using cuda::DeviceBuffer;
 
+constexpr int kTracedRounds = 32;
+
 struct Counters {
   unsigned long long bv_tests;
   unsigned long long triangle_tests;
@@ -37,6 +40,7 @@ struct Counters {
   unsigned int rounds;   // rounds that had tasks
   unsigned int steps;    // BV tests a task of this round runs at most
   unsigned int queue_full;
+  unsigned int round_tasks[kTracedRounds];  // tasks each of the first rounds took
 };
 
 constexpr unsigned kFullMask = 0xffffffffu;
@@ -481,7 +485,8 @@ __global__ void __launch_bounds__(32 * kPairWarps)
 // stack back to the queue: short enough that the work of one hard query spreads over
 // many threads in the next launch, long enough that a query finding a collision stops
 // its own search early.
-constexpr int kTaskSteps = 32;
+constexpr int kTaskSteps = 16;
+constexpr int kTaskThreads = 256;  // threads per block of the task kernel
 // Once a round has fewer tasks than kTailTasks the GPU has room to spare, and tasks run
 // kTailSteps: the remaining hard queries spread over more threads sooner.
 constexpr unsigned kTailTasks = 65536;
@@ -495,7 +500,7 @@ constexpr unsigned kTailSteps = 8;
 // triangle test would otherwise stall the whole warp and, with its registers, cut the
 // threads that fit); the node pairs left on a stack become new tasks in d_children (one
 // atomic per warp and step at which some lane hands its stack back).
-__global__ void __launch_bounds__(256, 4)
+__global__ void __launch_bounds__(kTaskThreads, 4)
     balanced_task_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_queue,
                          Task* d_children, Task* d_leaves, unsigned leaf_capacity,
                          const std::uint8_t* d_collided, Counters* d_counters) {
@@ -505,7 +510,11 @@ __global__ void __launch_bounds__(256, 4)
   const unsigned lane = threadIdx.x & 31;
   detail::TraversalCounts counts;
   // Each step pops one pair and pushes at most two: kTaskSteps + 1 entries suffice.
-  int stack_a[kTaskSteps + 1], stack_b[kTaskSteps + 1];
+  // The stacks live in shared memory, entry k of all threads side by side, so that a
+  // lane always meets the same bank whatever its depth (in local memory they missed
+  // the L1 and stalled the warps on L2).
+  __shared__ int2 s_stacks[kTaskSteps + 1][kTaskThreads];
+  int2* stack = &s_stacks[0][threadIdx.x];
   int top = 0, job_index = 0, query = 0;
   unsigned steps = 0;
   BodyRange body_a{}, body_b{};
@@ -541,8 +550,7 @@ __global__ void __launch_bounds__(256, 4)
             body_b = job.b;
             X_AB = detail::load_transform(job.X_AB);
             X_BA = geometry::inverse(X_AB);
-            stack_a[0] = task.a;
-            stack_b[0] = task.b;
+            stack[0] = make_int2(task.a, task.b);
             top = 1;
             steps = 0;
           }
@@ -557,7 +565,8 @@ __global__ void __launch_bounds__(256, 4)
       } else {
         ++steps;
         --top;
-        const int ia = stack_a[top], ib = stack_b[top];
+        const int2 pair = stack[top * kTaskThreads];
+        const int ia = pair.x, ib = pair.y;
         const BvhNode& na = m.nodes[body_a.node_offset + ia];
         const BvhNode& nb = m.nodes[body_b.node_offset + ib];
         ++counts.bv_tests;
@@ -573,12 +582,9 @@ __global__ void __launch_bounds__(256, 4)
           } else {
             detail::NodePair first, second;
             detail::split_pair(m, body_a, body_b, X_AB, X_BA, ia, ib, na, nb, &first, &second);
-            stack_a[top] = second.a;
-            stack_b[top] = second.b;
-            ++top;
-            stack_a[top] = first.a;
-            stack_b[top] = first.b;
-            ++top;
+            stack[top * kTaskThreads] = make_int2(second.a, second.b);
+            stack[(top + 1) * kTaskThreads] = make_int2(first.a, first.b);
+            top += 2;
           }
         }
         if (top > 0 && steps == max_steps) hand_back = true;
@@ -597,7 +603,10 @@ __global__ void __launch_bounds__(256, 4)
       if (lane == 31) base = atomicAdd(&d_counters->tasks, static_cast<unsigned>(total));
       base = __shfl_sync(kFullMask, base, 31);
       const unsigned at = base + offset - leaving;
-      for (int k = 0; k < leaving; ++k) d_children[at + k] = {job_index, stack_a[k], stack_b[k]};
+      for (int k = 0; k < leaving; ++k) {
+        const int2 pair = stack[k * kTaskThreads];
+        d_children[at + k] = {job_index, pair.x, pair.y};
+      }
     }
     if (hand_back) top = 0;
   }
@@ -640,7 +649,7 @@ __global__ void __launch_bounds__(256, 2)
 __device__ void advance_queue(Counters& c, unsigned task_capacity, unsigned max_launch) {
   const unsigned top = c.begin + c.tasks;
   // A task leaves at most kTaskSteps + 1 pairs in place of itself.
-  const unsigned room = (task_capacity - top) / kTaskSteps;
+  const unsigned room = (task_capacity - top) / (kTaskSteps + 1);
   const unsigned launch = min(top, min(room, max_launch));
   if (top > 0 && launch == 0) c.queue_full = 1;
   c.top = top;
@@ -650,7 +659,10 @@ __device__ void advance_queue(Counters& c, unsigned task_capacity, unsigned max_
   c.leaves = 0;
   c.fetched = 0;
   c.steps = launch < kTailTasks ? kTailSteps : kTaskSteps;
-  if (launch > 0) ++c.rounds;
+  if (launch > 0) {
+    if (c.rounds < kTracedRounds) c.round_tasks[c.rounds] = launch;
+    ++c.rounds;
+  }
 }
 
 __global__ void balanced_advance_kernel(Counters* d_counters, unsigned task_capacity,
@@ -719,7 +731,7 @@ struct GpuBatchChecker::Impl {
     device_name = properties.name;
     int blocks_per_sm = 0;
     check_cuda(
-        cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm, balanced_task_kernel, 256, 0),
+        cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm, balanced_task_kernel, kTaskThreads, 0),
         "occupancy");
     resident_task_blocks = std::max(1, blocks_per_sm) * properties.multiProcessorCount;
     check_cuda(
@@ -747,6 +759,7 @@ struct GpuBatchChecker::Impl {
     view.pair_a = pair_a.get();
     view.pair_b = pair_b.get();
     warp_roots = view.link_count + view.pair_count > 32;
+    if (const char* e = std::getenv("GPLANNER_EXP_ROOT_LANES")) warp_roots = std::atoi(e) == 32;
     pair_stack_capacity = 64 * (host.traversal_depth + 1);
     const std::size_t stack_bytes = pair_stack_capacity * sizeof(int2);  // at most 66 KB
     pair_warps = static_cast<int>(std::clamp<std::size_t>(
@@ -861,7 +874,7 @@ struct GpuBatchChecker::Impl {
     int burst = 4;
     while (true) {
       for (int r = 0; r < burst; ++r) {
-        balanced_task_kernel<<<resident_task_blocks, 256>>>(
+        balanced_task_kernel<<<resident_task_blocks, kTaskThreads>>>(
             view, jobs.get(), tasks.get(), children.get(), leaves.get(),
             static_cast<unsigned>(leaf_capacity), verdicts.get(), counters.get());
         balanced_leaf_kernel<<<resident_leaf_blocks, 256>>>(
@@ -877,6 +890,8 @@ struct GpuBatchChecker::Impl {
       if (c.top == 0) break;
     }
     stats.rounds += c.rounds;
+    for (unsigned r = 0; r < std::min<unsigned>(c.rounds, kTracedRounds); ++r)
+      stats.round_tasks.push_back(c.round_tasks[r]);
     return true;
   }
 

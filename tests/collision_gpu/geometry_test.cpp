@@ -156,6 +156,51 @@ TEST(TriangleDistance, FloatPlaneRejectionIsConservative) {
   EXPECT_GT(rejected_far, far / 4) << rejected_far << " of " << far;
 }
 
+// The float edge-axis test (the nine axes across an edge of each triangle, used after
+// the face planes) never rejects a pair within the threshold, at every scale, and
+// rejects most of the pairs well beyond it that the planes leave (not those with a
+// triangle shrunk to a point, whose edges give no axis).
+TEST(TriangleDistance, FloatEdgeAxisRejectionIsConservative) {
+  std::mt19937_64 rng(78);
+  int far = 0, by_planes_far = 0, rejected_far = 0, near = 0;
+  for (const double scale : {1e-3, 1.0, 1e3}) {
+    const double threshold = 2e-5 * scale;
+    for (int i = 0; i < 20000; ++i) {
+      TrianglePair pair = random_pair(&rng);
+      for (auto* t : {pair.a, pair.b})
+        for (int k = 0; k < 3; ++k) t[k] *= scale;
+      if (fcl_distance(pair) < 1e-9 * scale) continue;
+      for (const double factor : {0.0, 0.5, 0.99, 2.0, 100.0, 1e4}) {
+        const TrianglePair moved = at_distance(pair, factor * threshold);
+        Vec3<float> a[3], b[3];
+        TrianglePair rounded;  // the float triangles, exactly, for FCL
+        for (int k = 0; k < 3; ++k) {
+          a[k] = to_vec3<float>(moved.a[k]);
+          b[k] = to_vec3<float>(moved.b[k]);
+          rounded.a[k] = Eigen::Vector3d(a[k].x, a[k].y, a[k].z);
+          rounded.b[k] = Eigen::Vector3d(b[k].x, b[k].y, b[k].z);
+        }
+        const bool by_edges = beyond_edge_axes(a, b, float(threshold));
+        if (fcl_distance(rounded) <= threshold) {
+          ++near;
+          ASSERT_FALSE(by_edges) << "pair " << i << " at scale " << scale
+                                 << " within the threshold rejected";
+        } else if (factor >= 100) {
+          ++far;
+          const bool by_planes = beyond_plane(b, a[0], triangle_plane(a), float(threshold)) ||
+                                 beyond_plane(a, b[0], triangle_plane(b), float(threshold));
+          by_planes_far += by_planes;
+          rejected_far += by_planes || by_edges;
+        }
+      }
+    }
+  }
+  EXPECT_GT(near, 50000);
+  // The planes leave far - by_planes_far; the edge axes take most of those.
+  EXPECT_GT(rejected_far - by_planes_far, 0.6 * (far - by_planes_far))
+      << "planes " << by_planes_far << ", planes and edges " << rejected_far << " of " << far;
+}
+
 TEST(TriangleDistance, SegmentDistancesOnKnownCases) {
   const Vec3<double> o{0, 0, 0}, x{1, 0, 0};
   EXPECT_DOUBLE_EQ(

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "gplanner/collision_gpu/collision_model.h"
 
@@ -45,6 +46,7 @@ struct GpuCheckStats {
   std::size_t rounds = 0;  // balanced: launches of the task kernel (each a host round trip)
   int root_lanes = 0;      // balanced: threads per query for kinematics and broad phase
   bool warp_per_pair = false;  // balanced: the small-batch kernel ran (no rounds)
+  std::vector<unsigned> round_tasks;  // balanced: tasks per round (the first 32 of each chunk)
   unsigned long long bv_tests = 0;
   unsigned long long triangle_tests = 0;
 };

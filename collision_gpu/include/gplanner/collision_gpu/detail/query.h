@@ -83,13 +83,17 @@ GP_HD bool leaf_collides(const BvhTriangle& ta, const BvhTriangle& tb, const Xf&
     fa[k] = V3f{ta.v[k][0], ta.v[k][1], ta.v[k][2]};
     fb[k] = X_AB * V3f{tb.v[k][0], tb.v[k][1], tb.v[k][2]};
   }
-  // Most leaf pairs lie apart on one side of a face: float finds that for less, with
-  // its rounding bounded (beyond_plane only rejects beyond the error), and double
-  // decides everything else.
+  // Most leaf pairs lie apart along one of the eleven separating axes (the two face
+  // normals, then the nine edge-against-edge axes): float finds that for less, with its
+  // rounding bounded (these tests only reject beyond the error), and double decides the
+  // rest, nearly all of them pairs that do touch. (Measured on the CPU backend, 20,000
+  // configurations each: the face planes leave 70 to 78 % of the leaf pairs, the edge
+  // axes 2 to 15 % of those, of which over 99 % collide.)
   if (geometry::beyond_plane(fb, fa[0], geometry::triangle_plane(fa), threshold) ||
       geometry::beyond_plane(fa, fb[0], geometry::triangle_plane(fb), threshold)) {
     return false;
   }
+  if (geometry::beyond_edge_axes(fa, fb, threshold)) return false;
   geometry::Vec3<double> a[3], b[3];
   for (int k = 0; k < 3; ++k) {
     a[k] = widen(fa[k]);

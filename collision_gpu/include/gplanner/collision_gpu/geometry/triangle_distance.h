@@ -116,6 +116,44 @@ GP_HD bool beyond_plane(const Vec3<T> p[3], const Vec3<T> q0, const TrianglePlan
   return above == 3 || below == 3;
 }
 
+// Whether one of the nine axes across an edge of a and an edge of b (their cross
+// products) parts the triangles by more than `threshold`: the separating-axis test's
+// edge axes, in whatever precision T is, with its rounding bounded. Any axis L that
+// parts the projections of the six vertices by a gap g proves the triangles at least
+// g / |L| apart, so the computed axis serves as it is; what must be bounded is the
+// rounding of the projections, taken relative to a[0] (each within
+// 10 eps |L|_1 max|v - a[0]|), and |L| is replaced by its 1-norm, an upper bound that
+// needs no square root and cannot underflow to zero while L does not. Degenerate axes
+// (parallel edges) part nothing. Together with the two face planes these are the
+// eleven axes of the triangle-triangle separating-axis test.
+template <typename T>
+GP_HD bool beyond_edge_axes(const Vec3<T> a[3], const Vec3<T> b[3], T threshold) {
+  Vec3<T> ra[3], rb[3];
+  T reach = 0;
+  for (int k = 0; k < 3; ++k) {
+    ra[k] = a[k] - a[0];
+    rb[k] = b[k] - a[0];
+    for (int c = 0; c < 3; ++c) {
+      reach = std::fmax(reach, std::fabs(ra[k][c]));
+      reach = std::fmax(reach, std::fabs(rb[k][c]));
+    }
+  }
+  const T per_length = threshold * T(1.000001) + T(10) * machine_epsilon<T>() * reach;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3<T> ea = ra[(i + 1) % 3] - ra[i];
+    for (int j = 0; j < 3; ++j) {
+      const Vec3<T> L = cross(ea, rb[(j + 1) % 3] - rb[j]);
+      const T a1 = dot(L, ra[1]), a2 = dot(L, ra[2]);  // a[0] projects to 0
+      const T b0 = dot(L, rb[0]), b1 = dot(L, rb[1]), b2 = dot(L, rb[2]);
+      const T a_min = std::fmin(T(0), std::fmin(a1, a2)), a_max = std::fmax(T(0), std::fmax(a1, a2));
+      const T b_min = std::fmin(b0, std::fmin(b1, b2)), b_max = std::fmax(b0, std::fmax(b1, b2));
+      const T need = per_length * (std::fabs(L.x) + std::fabs(L.y) + std::fabs(L.z));
+      if (b_min - a_max > need || a_min - b_max > need) return true;
+    }
+  }
+  return false;
+}
+
 // Face tests of triangle p (its vertices and edges) against the face of triangle q:
 // a vertex of p within `threshold` above or below q's face, or an edge of p crossing
 // it. Edge-against-edge proximity is tested separately.
@@ -146,11 +184,14 @@ GP_HD bool touches_face(const Vec3<T> p[3], const Vec3<T> q[3], const TrianglePl
 // True when triangles a and b intersect or lie within `threshold` of each other (both
 // given in one frame); false when they are farther apart, up to rounding of order
 // eps times the coordinates. The distance between two triangles is reached
-// edge-to-edge or vertex-to-face, or is zero where an edge crosses a face.
+// edge-to-edge or vertex-to-face, or is zero where an edge crosses a face. The face
+// tests come first: triangles that intersect (where an edge crosses a face) are found
+// by them without the nine edge-to-edge distances.
 template <typename T>
 GP_HD bool triangles_within(const Vec3<T> a[3], const Vec3<T> b[3], T threshold) {
   const TrianglePlane<T> pa = triangle_plane(a), pb = triangle_plane(b);
   if (beyond_plane(b, a[0], pa, threshold) || beyond_plane(a, b[0], pb, threshold)) return false;
+  if (touches_face(a, b, pb, threshold) || touches_face(b, a, pa, threshold)) return true;
   const T edge_threshold = threshold + pa.thickness + pb.thickness;
   const T threshold2 = edge_threshold * edge_threshold;
   for (int i = 0; i < 3; ++i) {
@@ -161,7 +202,7 @@ GP_HD bool triangles_within(const Vec3<T> a[3], const Vec3<T> b[3], T threshold)
       }
     }
   }
-  return touches_face(a, b, pb, threshold) || touches_face(b, a, pa, threshold);
+  return false;
 }
 
 }  // namespace gplanner::geometry

@@ -4,7 +4,6 @@
 #include <cuda_runtime.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <cstddef>
 #include <cub/device/device_radix_sort.cuh>
 #include <stdexcept>
@@ -308,8 +307,15 @@ __global__ void balanced_roots_kernel(CollisionModelView m, const float* d_q, in
 // joint transforms and every bounding-sphere test spread over the lanes (one thread
 // would run them one after another: 130 us for a PR2 arm's 519 tests), only the
 // composition of the poses down the tree in one lane. Jobs are appended with one atomic
-// per warp and 32 tests.
+// per warp and 32 tests. Used for batches of up to kWarpRootsUpTo queries: in larger
+// ones the GPU is full either way, and a query's jobs side by side (rather than
+// interleaved with other queries' as the thread-per-query kernel leaves them) made the
+// first rounds' lanes work on fewer queries at once and did up to 37 % more BV tests
+// (measured on the H100: the humanoid at 100,000 queries 10.5 ms with a thread per
+// query against 12.6 ms; at 3,000 and 10,000 queries a warp per query was faster or
+// tied on the humanoid and both PR2 scenes).
 constexpr int kRootWarps = 4;  // warps (queries) per block
+constexpr std::size_t kWarpRootsUpTo = 16384;
 
 __global__ void __launch_bounds__(32 * kRootWarps)
     balanced_roots_warp_kernel(CollisionModelView m, const float* d_q, int n, Job* d_jobs,
@@ -485,8 +491,13 @@ __global__ void __launch_bounds__(32 * kPairWarps)
 // stack back to the queue: short enough that the work of one hard query spreads over
 // many threads in the next launch, long enough that a query finding a collision stops
 // its own search early.
-constexpr int kTaskSteps = 16;
-constexpr int kTaskThreads = 256;  // threads per block of the task kernel
+constexpr int kTaskSteps = 32;
+// Threads per block of the task kernel: with 33 stack entries each in shared memory
+// (34 KB a block), four blocks per SM in the carve-out chosen by the checker. Measured
+// on the H100 at 50,000 to 100,000 queries against 256 threads with stacks in local
+// memory: 4 to 17 % faster on every scene; 16-step tasks (half the stack) did more BV
+// tests and were slower than either.
+constexpr int kTaskThreads = 128;
 // Once a round has fewer tasks than kTailTasks the GPU has room to spare, and tasks run
 // kTailSteps: the remaining hard queries spread over more threads sooner.
 constexpr unsigned kTailTasks = 65536;
@@ -500,7 +511,7 @@ constexpr unsigned kTailSteps = 8;
 // triangle test would otherwise stall the whole warp and, with its registers, cut the
 // threads that fit); the node pairs left on a stack become new tasks in d_children (one
 // atomic per warp and step at which some lane hands its stack back).
-__global__ void __launch_bounds__(kTaskThreads, 4)
+__global__ void __launch_bounds__(kTaskThreads, 6)
     balanced_task_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_queue,
                          Task* d_children, Task* d_leaves, unsigned leaf_capacity,
                          const std::uint8_t* d_collided, Counters* d_counters) {
@@ -511,8 +522,9 @@ __global__ void __launch_bounds__(kTaskThreads, 4)
   detail::TraversalCounts counts;
   // Each step pops one pair and pushes at most two: kTaskSteps + 1 entries suffice.
   // The stacks live in shared memory, entry k of all threads side by side, so that a
-  // lane always meets the same bank whatever its depth (in local memory they missed
-  // the L1 and stalled the warps on L2).
+  // lane always meets the same bank whatever its depth: in local memory they missed the
+  // L1 and stalled the warps on L2 (Nsight Compute on the H100: 19 cycles of
+  // long-scoreboard stall an instruction in the big rounds).
   __shared__ int2 s_stacks[kTaskSteps + 1][kTaskThreads];
   int2* stack = &s_stacks[0][threadIdx.x];
   int top = 0, job_index = 0, query = 0;
@@ -695,9 +707,10 @@ struct GpuBatchChecker::Impl {
   std::size_t memory_cap = 0;
   int resident_task_blocks = 1;  // balanced: blocks of each kernel resident at once
   int resident_leaf_blocks = 1;
-  // balanced: kinematics and broad phase a warp per query where a query has more link
-  // and pair sphere tests than a warp has lanes, else a thread per query.
-  bool warp_roots = false;
+  // balanced: whether a query has more link and pair sphere tests than a warp has lanes;
+  // then batches of up to kWarpRootsUpTo queries run kinematics and broad phase a warp
+  // per query.
+  bool many_bodies = false;
   int pair_stack_capacity = 0;  // balanced, small batches: node pairs per warp's stack
   int pair_warps = 1;           // warps (stacks) per block of the small-batch kernel
   int pair_blocks = 1;          // resident blocks of the small-batch kernel
@@ -730,9 +743,16 @@ struct GpuBatchChecker::Impl {
     check_cuda(cudaGetDeviceProperties(&properties, 0), "cudaGetDeviceProperties");
     device_name = properties.name;
     int blocks_per_sm = 0;
-    check_cuda(
-        cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm, balanced_task_kernel, kTaskThreads, 0),
-        "occupancy");
+    // The shared-memory share of the SM's 256 KB of L1 and shared memory that the task
+    // kernel asks for, in percent of the largest: measured on the H100 at 100 (six blocks,
+    // 28 KB of L1 left for the nodes), 80, 60 and 40 (three blocks): 60 and 80 were
+    // fastest, 60 on more scenes; 100 and 40 were 5 to 40 % slower.
+    check_cuda(cudaFuncSetAttribute(balanced_task_kernel,
+                                    cudaFuncAttributePreferredSharedMemoryCarveout, 60),
+               "carve-out");
+    check_cuda(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm, balanced_task_kernel,
+                                                             kTaskThreads, 0),
+               "occupancy");
     resident_task_blocks = std::max(1, blocks_per_sm) * properties.multiProcessorCount;
     check_cuda(
         cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm, balanced_leaf_kernel, 256, 0),
@@ -758,8 +778,7 @@ struct GpuBatchChecker::Impl {
     view.triangles = triangles.get();
     view.pair_a = pair_a.get();
     view.pair_b = pair_b.get();
-    warp_roots = view.link_count + view.pair_count > 32;
-    if (const char* e = std::getenv("GPLANNER_EXP_ROOT_LANES")) warp_roots = std::atoi(e) == 32;
+    many_bodies = view.link_count + view.pair_count > 32;
     pair_stack_capacity = 64 * (host.traversal_depth + 1);
     const std::size_t stack_bytes = pair_stack_capacity * sizeof(int2);  // at most 66 KB
     pair_warps = static_cast<int>(std::clamp<std::size_t>(
@@ -839,6 +858,7 @@ struct GpuBatchChecker::Impl {
   bool run_balanced(int n, std::size_t job_capacity, std::size_t task_capacity,
                     std::size_t children_capacity, std::size_t leaf_capacity) {
     check_cuda(cudaMemset(verdicts.get(), 0, n), "memset");
+    const bool warp_roots = many_bodies && static_cast<std::size_t>(n) <= kWarpRootsUpTo;
     if (warp_roots) {
       balanced_roots_warp_kernel<<<blocks_for(n, kRootWarps), 32 * kRootWarps>>>(
           view, configurations.get(), n, jobs.get(), static_cast<int>(job_capacity), tasks.get(),
@@ -853,8 +873,8 @@ struct GpuBatchChecker::Impl {
     stats.root_lanes = warp_roots ? 32 : 1;
     const std::size_t small_batch = options.warp_per_pair_up_to != GpuCheckerOptions::kAuto
                                         ? options.warp_per_pair_up_to
-                                    : warp_roots ? 1024
-                                                 : 10;
+                                    : many_bodies ? 1024
+                                                  : 10;
     if (static_cast<std::size_t>(n) <= small_batch) {
       balanced_warp_per_pair_kernel<<<pair_blocks, 32 * pair_warps,
                                       pair_warps * pair_stack_capacity * sizeof(int2)>>>(

@@ -82,13 +82,21 @@ std::uint32_t Roadmap::add_vertex(const float* q) {
   return static_cast<std::uint32_t>(adjacency_.size() - 1);
 }
 
+namespace {
+constexpr std::size_t kFirstEdgeRoom = 32;
+}  // namespace
+
 long long Roadmap::add_edge(std::uint32_t a, std::uint32_t b, float length, EdgeState state) {
   if (a == b || find_edge(a, b) >= 0) return -1;
   if (a > b) std::swap(a, b);
   const auto e = static_cast<std::uint32_t>(edges_.size());
   edges_.push_back({a, b, length, state});
-  adjacency_[a].push_back(e);
-  adjacency_[b].push_back(e);
+  // A milestone gets about twice k edges: room for that at its first, instead of the
+  // five or six reallocations of doubling from one.
+  for (const std::uint32_t v : {a, b}) {
+    if (adjacency_[v].empty()) adjacency_[v].reserve(kFirstEdgeRoom);
+    adjacency_[v].push_back(e);
+  }
   return e;
 }
 

@@ -74,32 +74,45 @@ GP_HD void link_poses(const CollisionModelView& m, const float* q, Xf* X_WL) {
 
 GP_HD geometry::Vec3<double> widen(V3f p) { return {double(p.x), double(p.y), double(p.z)}; }
 
-// The leaf test: triangle ta of body A and tb of body B (moved into A's frame by
-// X_AB), decided in double so that only the float poses round.
-GP_HD bool leaf_collides(const BvhTriangle& ta, const BvhTriangle& tb, const Xf& X_AB,
-                         float threshold) {
-  V3f fa[3], fb[3];
+// Triangle ta of body A and tb of body B, B's vertices moved into A's frame by X_AB.
+GP_HD void place_leaf_pair(const BvhTriangle& ta, const BvhTriangle& tb, const Xf& X_AB, V3f fa[3],
+                           V3f fb[3]) {
   for (int k = 0; k < 3; ++k) {
     fa[k] = V3f{ta.v[k][0], ta.v[k][1], ta.v[k][2]};
     fb[k] = X_AB * V3f{tb.v[k][0], tb.v[k][1], tb.v[k][2]};
   }
-  // Most leaf pairs lie apart along one of the eleven separating axes (the two face
-  // normals, then the nine edge-against-edge axes): float finds that for less, with its
-  // rounding bounded (these tests only reject beyond the error), and double decides the
-  // rest, nearly all of them pairs that do touch. (Measured on the CPU backend, 20,000
-  // configurations each: the face planes leave 70 to 78 % of the leaf pairs, the edge
-  // axes 2 to 15 % of those, of which over 99 % collide.)
-  if (geometry::beyond_plane(fb, fa[0], geometry::triangle_plane(fa), threshold) ||
-      geometry::beyond_plane(fa, fb[0], geometry::triangle_plane(fb), threshold)) {
-    return false;
-  }
-  if (geometry::beyond_edge_axes(fa, fb, threshold)) return false;
+}
+
+// The leaf test's first stage, in float: true when a separating axis parts the
+// triangles by more than the threshold, beyond its rounding. Most leaf pairs lie apart
+// along one of the eleven axes (the two face normals, then the nine edge-against-edge
+// axes); what is left is, nearly all, pairs that do touch. (Measured on the CPU backend,
+// 20,000 configurations each: the face planes leave 70 to 78 % of the leaf pairs, the
+// edge axes 2 to 15 % of those, of which over 99 % collide.)
+GP_HD bool leaf_apart_in_float(const V3f fa[3], const V3f fb[3], float threshold) {
+  return geometry::beyond_plane(fb, fa[0], geometry::triangle_plane(fa), threshold) ||
+         geometry::beyond_plane(fa, fb[0], geometry::triangle_plane(fb), threshold) ||
+         geometry::beyond_edge_axes(fa, fb, threshold);
+}
+
+// The leaf test's second stage, deciding the pairs the first leaves in double, so that
+// only the float poses round.
+GP_HD bool leaf_within_in_double(const V3f fa[3], const V3f fb[3], float threshold) {
   geometry::Vec3<double> a[3], b[3];
   for (int k = 0; k < 3; ++k) {
     a[k] = widen(fa[k]);
     b[k] = widen(fb[k]);
   }
   return geometry::triangles_within(a, b, double(threshold));
+}
+
+// The leaf test: whether triangle ta of body A and tb of body B (moved into A's frame
+// by X_AB) come within the threshold.
+GP_HD bool leaf_collides(const BvhTriangle& ta, const BvhTriangle& tb, const Xf& X_AB,
+                         float threshold) {
+  V3f fa[3], fb[3];
+  place_leaf_pair(ta, tb, X_AB, fa, fb);
+  return !leaf_apart_in_float(fa, fb, threshold) && leaf_within_in_double(fa, fb, threshold);
 }
 
 // Whether two nodes' boxes (B's placed in A's frame by X_AB) come within the margin:

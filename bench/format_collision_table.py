@@ -3,6 +3,7 @@
 bench/RESULTS.md.
 
 usage: bench/format_collision_table.py TABLE.jsonl [AGREEMENT.jsonl] [PEAK_RATES.json]
+(AGREEMENT.jsonl may be given as "" to print the peak-rate table alone)
 """
 import json
 import sys
@@ -69,7 +70,7 @@ def main():
         sys.exit(__doc__)
     peak = json.load(open(sys.argv[3])) if len(sys.argv) > 3 else None
     print(timing_table(load(sys.argv[1]), peak))
-    if len(sys.argv) > 2:
+    if len(sys.argv) > 2 and sys.argv[2]:
         print()
         print(agreement_table(load(sys.argv[2])))
 

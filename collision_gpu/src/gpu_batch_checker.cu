@@ -492,8 +492,8 @@ __global__ void __launch_bounds__(32 * kPairWarps)
 // many threads in the next launch, long enough that a query finding a collision stops
 // its own search early.
 constexpr int kTaskSteps = 32;
-// Threads per block of the task kernel: with 33 stack entries each in shared memory
-// (34 KB a block), four blocks per SM in the carve-out chosen by the checker. Measured
+// Threads per block of the task kernel, with 33 stack entries each in shared memory
+// (34 KB a block; how many blocks an SM holds is set by the carve-out). Measured
 // on the H100 at 50,000 to 100,000 queries against 256 threads with stacks in local
 // memory: 4 to 17 % faster on every scene; 16-step tasks (half the stack) did more BV
 // tests and were slower than either.
@@ -744,9 +744,10 @@ struct GpuBatchChecker::Impl {
     device_name = properties.name;
     int blocks_per_sm = 0;
     // The shared-memory share of the SM's 256 KB of L1 and shared memory that the task
-    // kernel asks for, in percent of the largest: measured on the H100 at 100 (six blocks,
-    // 28 KB of L1 left for the nodes), 80, 60 and 40 (three blocks): 60 and 80 were
-    // fastest, 60 on more scenes; 100 and 40 were 5 to 40 % slower.
+    // kernel asks for, in percent of the largest (the driver rounds it to a size the SM
+    // has): measured on the H100 at 100 (six blocks, 28 KB of L1 left for the nodes),
+    // 80, 60 and 40: 60 and 80 were fastest, 60 on more scenes; 100 and 40 were 11 to
+    // 51 % slower than 60.
     check_cuda(cudaFuncSetAttribute(balanced_task_kernel,
                                     cudaFuncAttributePreferredSharedMemoryCarveout, 60),
                "carve-out");

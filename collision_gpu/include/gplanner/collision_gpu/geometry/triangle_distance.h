@@ -124,7 +124,9 @@ GP_HD bool beyond_plane(const Vec3<T> p[3], const Vec3<T> q0, const TrianglePlan
 // rounding of the projections, taken relative to a[0] (each within
 // 10 eps |L|_1 max|v - a[0]|), and |L| is replaced by its 1-norm, an upper bound that
 // needs no square root and cannot underflow to zero while L does not. Degenerate axes
-// (parallel edges) part nothing. Together with the two face planes these are the
+// (parallel edges) part nothing. The bound holds while the products stay normal
+// numbers: in float, for edges and distances above about 1e-12 (their cubes above
+// 1.2e-38), far below any robot's. Together with the two face planes these are the
 // eleven axes of the triangle-triangle separating-axis test.
 template <typename T>
 GP_HD bool beyond_edge_axes(const Vec3<T> a[3], const Vec3<T> b[3], T threshold) {

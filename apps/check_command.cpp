@@ -85,6 +85,7 @@ std::string gpu_details(gplanner::CollisionChecker* checker) {
     out << "; tasks per round:";
     for (const unsigned tasks : stats.round_tasks) out << " " << tasks;
   }
+  if (stats.finished_tasks) out << "; then " << stats.finished_tasks << " tasks a warp each";
   return out.str();
 }
 

@@ -39,6 +39,7 @@ struct Counters {
   unsigned int rounds;   // rounds that had tasks
   unsigned int steps;    // BV tests a task of this round runs at most
   unsigned int queue_full;
+  unsigned int finish;  // the queue is short: the finish kernel takes all of it
   unsigned int round_tasks[kTracedRounds];  // tasks each of the first rounds took
 };
 
@@ -409,12 +410,19 @@ __global__ void __launch_bounds__(32 * kRootWarps)
 // 64 * (traversal_depth + 1) in all: stack_capacity.
 constexpr int kPairWarps = 4;  // warps per block at most
 
+//
+// kFinish: the same for what a traversal's rounds left in a short queue (Counters::
+// finish), a warp per task from its node pair, instead of more rounds of a few tasks each,
+// whose cost is their launches and dependent steps whatever their size.
+template <bool kFinish>
 __global__ void __launch_bounds__(32 * kPairWarps)
-    balanced_warp_per_pair_kernel(CollisionModelView m, const Job* d_jobs, int stack_capacity,
-                                  std::uint8_t* d_collided, Counters* d_counters) {
+    balanced_warp_per_pair_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_tasks,
+                                  int stack_capacity, std::uint8_t* d_collided,
+                                  Counters* d_counters) {
   extern __shared__ int2 s_stacks[];
   if (d_counters->jobs_overflow) return;  // the host runs the chunk again, smaller
-  const unsigned jobs = d_counters->jobs;
+  if (kFinish && !d_counters->finish) return;
+  const unsigned jobs = kFinish ? d_counters->top : d_counters->jobs;
   const unsigned lane = threadIdx.x & 31;
   int2* stack = s_stacks + static_cast<std::size_t>(threadIdx.x / 32) * stack_capacity;
   volatile std::uint8_t* collided_flags = d_collided;
@@ -424,12 +432,13 @@ __global__ void __launch_bounds__(32 * kPairWarps)
     if (lane == 0) j = atomicAdd(&d_counters->next_job, 1u);
     j = __shfl_sync(kFullMask, j, 0);
     if (j >= jobs) break;
-    const Job& job = d_jobs[j];
+    const Task task = kFinish ? d_tasks[j] : Task{static_cast<int>(j), 0, 0};
+    const Job& job = d_jobs[task.job];
     const int query = job.query;
     if (__shfl_sync(kFullMask, lane == 0 ? collided_flags[query] : 0, 0)) continue;
     const BodyRange body_a = job.a, body_b = job.b;
     const detail::Xf X_AB = detail::load_transform(job.X_AB);
-    if (lane == 0) stack[0] = make_int2(0, 0);
+    if (lane == 0) stack[0] = make_int2(task.a, task.b);
     __syncwarp();
     int top = 1;
     bool collided = false;
@@ -502,6 +511,11 @@ constexpr int kTaskThreads = 128;
 // kTailSteps: the remaining hard queries spread over more threads sooner.
 constexpr unsigned kTailTasks = 65536;
 constexpr unsigned kTailSteps = 8;
+// After two rounds, a queue of at most kFinishTasks tasks is finished by one launch of
+// the small-batch kernel, a warp per task, instead of the rounds of a few tasks each
+// that remained (measured on an H200 against no finish, the same run: 50,000 to 100,000
+// queries 0 to 7 % faster on every scene, 300 to 4,000 queries 12 to 34 %).
+constexpr unsigned kFinishTasks = 4096;
 
 // Tasks fetched lane by lane: each lane runs up to kTaskSteps BV-pair tests depth-first
 // from its task's node pair and, as soon as its task ends (stack empty, steps used up, or
@@ -664,15 +678,17 @@ __device__ void advance_queue(Counters& c, unsigned task_capacity, unsigned max_
   const unsigned room = (task_capacity - top) / (kTaskSteps + 1);
   const unsigned launch = min(top, min(room, max_launch));
   if (top > 0 && launch == 0) c.queue_full = 1;
+  // A short queue goes to the finish kernel whole; the rounds' kernels then do nothing.
+  c.finish = top > 0 && top <= kFinishTasks && c.rounds >= 2 ? 1 : 0;
   c.top = top;
-  c.launch = launch;
-  c.begin = top - launch;
+  c.launch = c.finish ? 0 : launch;
+  c.begin = top - c.launch;
   c.tasks = 0;
   c.leaves = 0;
   c.fetched = 0;
   c.steps = launch < kTailTasks ? kTailSteps : kTaskSteps;
-  if (launch > 0) {
-    if (c.rounds < kTracedRounds) c.round_tasks[c.rounds] = launch;
+  if (c.launch > 0) {
+    if (c.rounds < kTracedRounds) c.round_tasks[c.rounds] = c.launch;
     ++c.rounds;
   }
 }
@@ -784,12 +800,12 @@ struct GpuBatchChecker::Impl {
     const std::size_t stack_bytes = pair_stack_capacity * sizeof(int2);  // at most 66 KB
     pair_warps = static_cast<int>(std::clamp<std::size_t>(
         properties.sharedMemPerBlockOptin / stack_bytes, 1, kPairWarps));
-    check_cuda(cudaFuncSetAttribute(balanced_warp_per_pair_kernel,
-                                    cudaFuncAttributeMaxDynamicSharedMemorySize,
-                                    static_cast<int>(pair_warps * stack_bytes)),
-               "shared memory of the small-batch kernel");
+    for (auto* kernel : {balanced_warp_per_pair_kernel<false>, balanced_warp_per_pair_kernel<true>})
+      check_cuda(cudaFuncSetAttribute(kernel, cudaFuncAttributeMaxDynamicSharedMemorySize,
+                                      static_cast<int>(pair_warps * stack_bytes)),
+                 "shared memory of the small-batch kernel");
     check_cuda(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm,
-                                                             balanced_warp_per_pair_kernel,
+                                                             balanced_warp_per_pair_kernel<false>,
                                                              32 * pair_warps,
                                                              pair_warps * stack_bytes),
                "occupancy");
@@ -877,9 +893,9 @@ struct GpuBatchChecker::Impl {
                                     : many_bodies ? 1024
                                                   : 10;
     if (static_cast<std::size_t>(n) <= small_batch) {
-      balanced_warp_per_pair_kernel<<<pair_blocks, 32 * pair_warps,
-                                      pair_warps * pair_stack_capacity * sizeof(int2)>>>(
-          view, jobs.get(), pair_stack_capacity, verdicts.get(), counters.get());
+      balanced_warp_per_pair_kernel<false>
+          <<<pair_blocks, 32 * pair_warps, pair_warps * pair_stack_capacity * sizeof(int2)>>>(
+              view, jobs.get(), nullptr, pair_stack_capacity, verdicts.get(), counters.get());
       check_cuda(cudaGetLastError(), "balanced small-batch kernel");
       stats.warp_per_pair = true;
       return !read_counters().jobs_overflow;
@@ -903,14 +919,20 @@ struct GpuBatchChecker::Impl {
             tasks.get(), verdicts.get(), counters.get());
         balanced_advance_kernel<<<1, 1>>>(counters.get(), capacity, max_launch);
       }
+      // Nothing to do unless a round left a short queue (then the rounds above it did
+      // nothing either).
+      balanced_warp_per_pair_kernel<true>
+          <<<pair_blocks, 32 * pair_warps, pair_warps * pair_stack_capacity * sizeof(int2)>>>(
+              view, jobs.get(), tasks.get(), pair_stack_capacity, verdicts.get(), counters.get());
       check_cuda(cudaGetLastError(), "balanced traversal kernels");
       c = read_counters();
       if (c.jobs_overflow) return false;
       if (c.queue_full)
         throw std::runtime_error("balanced traversal: task queue full; lower the batch size");
-      if (c.top == 0) break;
+      if (c.finish || c.top == 0) break;
     }
     stats.rounds += c.rounds;
+    if (c.finish) stats.finished_tasks += c.top;
     for (unsigned r = 0; r < std::min<unsigned>(c.rounds, kTracedRounds); ++r)
       stats.round_tasks.push_back(c.round_tasks[r]);
     return true;

@@ -52,6 +52,9 @@ def main():
     if any("shortcut_seconds" in r for s in SCENES for r in runs.get((s, "ours-lazyprm"), [])):
         print()
         print_first_path(runs, median)
+    if any("simplify_seconds" in r for v in runs.values() for r in v):
+        print()
+        print_with_simplification(runs, median)
     if any(p.endswith("@gpu") for _, p in runs):
         print()
         print_plugin_against_fcl(runs, median, cell)
@@ -78,8 +81,8 @@ def print_ours_against_ompl(runs, median, cell):
 
 
 def print_first_path(runs, median):
-    """Ours to the first path (its time less the shortcutting, which OMPL's planners
-    do not do) against OMPL's LazyPRM and PRM."""
+    """Ours to the first path (its time less the shortcutting) against OMPL's LazyPRM
+    and PRM to theirs (their solve, before any simplification)."""
     print("| scene | ours-lazyprm to the first path | OMPL LazyPRM / it | OMPL PRM / it |")
     print("| --- | --- | --- | --- |")
     for scene in SCENES:
@@ -100,6 +103,49 @@ def print_first_path(runs, median):
                 ratios.append("%s%.0fx" % (">" if bound else "", t / ours))
         print("| %s | %s s (%s-%s) | %s |" % (scene, fmt(ours), fmt(min(times)), fmt(max(times)),
                                             " | ".join(ratios)))
+
+
+def print_with_simplification(runs, median):
+    """Both with their paths shortened: ours (its shortcutting included) against
+    OMPL's LazyPRM and PRM followed by SimpleSetup::simplifySolution, as OMPL's
+    Benchmark runs them (a run that found no path: its time, nothing to simplify)."""
+    print("| scene | ours-lazyprm | ompl-lazyprm + simplify | ompl-prm + simplify "
+          "| OMPL LazyPRM / ours lazy | OMPL PRM / ours lazy | path length: ours / OMPL LazyPRM / OMPL PRM |")
+    print("| --- " * 7 + "|")
+    for scene in SCENES:
+        bases = ["ompl-lazyprm", "ompl-prm"]
+        if not any(r.get("simplify_seconds") is not None for b in bases
+                   for r in runs.get((scene, b), [])):
+            continue
+        ours, ours_bound = median(scene, "ours-lazyprm")
+        cells, ratios, lengths = [], [], []
+        v = runs.get((scene, "ours-lazyprm"), [])
+        lengths.append(fmt(statistics.median(r["length"] for r in v if r["solved"]))
+                       if any(r["solved"] for r in v) else "-")
+        for b in bases:
+            v = runs.get((scene, b), [])
+            if not v:
+                cells.append("-")
+                ratios.append("-")
+                lengths.append("-")
+                continue
+            times = [r["seconds"] + r.get("simplify_seconds", 0) for r in v]
+            t = statistics.median(times)
+            solved = sum(r["solved"] for r in v)
+            bound = solved * 2 <= len(v)
+            cells.append("%s%s s (%s-%s), %d/%d" % (">" if bound else "", fmt(t), fmt(min(times)),
+                                                   fmt(max(times)), solved, len(v)))
+            lengths.append(fmt(statistics.median(r["simplified_length"] for r in v
+                                                 if r["solved"])) if solved else "-")
+            if ours is None:
+                ratios.append("-")
+            elif ours_bound:
+                ratios.append("ours failed")
+            else:
+                ratios.append("%s%.0fx" % (">" if bound else "", t / ours))
+        print("| %s | %s | %s | %s | %s |" % (scene, fmt(ours) + " s" if ours is not None else "-",
+                                             " | ".join(cells), " | ".join(ratios),
+                                             " / ".join(lengths)))
 
 
 def print_plugin_against_fcl(runs, median, cell):

@@ -6,7 +6,9 @@
 // checker as the OMPL plugin gives it (planner name + "@" + backend, e.g.
 // ompl-rrtconnect@gpu: our StateValidityChecker and batched MotionValidator on that
 // backend, the two lines an OMPL user changes). Every run is a fresh planner with its
-// own seed; prints one JSON line per run.
+// own seed; prints one JSON line per run. An OMPL run that finds a path then simplifies
+// it (SimpleSetup::simplifySolution, as OMPL's Benchmark does by default), timed apart
+// from the solve; ours reports its stages' times (its shortcutting is part of its time).
 //
 // usage: gplanner_plan_bench SCENE [--runs N] [--time-limit S] [--planners a,b,...]
 //                            [--backend B] [--slow S] [--slow-runs M] [--budget S]
@@ -56,7 +58,11 @@ struct Run {
   bool solved = false;
   double seconds = 0, length = 0;
   double shortcut_seconds = -1;  // ours: of `seconds`, shortening the found path
+  // OMPL's: after `seconds`, SimpleSetup::simplifySolution (as OMPL's Benchmark and
+  // MoveIt run it after a solve) and the path's length after it.
+  double simplify_seconds = -1, simplified_length = 0;
   std::size_t checks = 0;
+  std::string details;  // ours: the stage times and counts, a JSON object
 };
 
 void print(const gplanner::Scene& scene, const Run& run) {
@@ -65,6 +71,11 @@ void print(const gplanner::Scene& scene, const Run& run) {
             << ",\"solved\":" << (run.solved ? "true" : "false") << ",\"seconds\":" << run.seconds
             << ",\"length\":" << run.length << ",\"state_checks\":" << run.checks;
   if (run.shortcut_seconds >= 0) std::cout << ",\"shortcut_seconds\":" << run.shortcut_seconds;
+  if (run.simplify_seconds >= 0) {
+    std::cout << ",\"simplify_seconds\":" << run.simplify_seconds
+              << ",\"simplified_length\":" << run.simplified_length;
+  }
+  if (!run.details.empty()) std::cout << ",\"details\":" << run.details;
   std::cout << "}" << std::endl;
 }
 
@@ -103,7 +114,12 @@ Run run_ompl(const gplanner::Scene& scene, const std::string& name, double time_
   const ob::PlannerStatus status = setup.solve(time_limit);
   run.seconds = setup.getLastPlanComputationTime();
   run.solved = status == ob::PlannerStatus::EXACT_SOLUTION;
-  if (run.solved) run.length = setup.getSolutionPath().length();
+  if (run.solved) {
+    run.length = setup.getSolutionPath().length();
+    setup.simplifySolution();
+    run.simplify_seconds = setup.getLastSimplificationTime();
+    run.simplified_length = setup.getSolutionPath().length();
+  }
   run.checks = checker->checks();
   return run;
 }
@@ -123,6 +139,16 @@ Run run_ours(const gplanner::Scene& scene, const std::string& name, double time_
   run.length = result.length;
   run.checks = result.states_checked + result.samples_checked;
   run.shortcut_seconds = result.times.shortcutting;
+  const gplanner::PlanTimes& t = result.times;
+  std::ostringstream details;
+  details << std::setprecision(6) << "{\"sampling\":" << t.sampling
+          << ",\"state_checks\":" << t.state_checks << ",\"knn\":" << t.knn
+          << ",\"search\":" << t.search << ",\"edge_checks\":" << t.edge_checks
+          << ",\"shortcutting\":" << t.shortcutting << ",\"rounds\":" << result.rounds
+          << ",\"milestones\":" << result.milestones << ",\"searches\":" << result.searches
+          << ",\"edge_batches\":" << result.edge_batches
+          << ",\"length_before_shortcut\":" << result.length_before_shortcut << "}";
+  run.details = details.str();
   return run;
 }
 

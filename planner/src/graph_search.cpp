@@ -6,6 +6,8 @@
 #include <queue>
 #include <utility>
 
+#include "gplanner/planner/goal_distances.h"
+
 namespace gplanner {
 namespace {
 
@@ -120,26 +122,9 @@ GraphPath shortest_path(const Roadmap& roadmap, const std::vector<double>& to_go
 
 std::vector<double> cost_to_goal(const Roadmap& roadmap, std::uint32_t goal,
                                  bool valid_edges_only) {
-  std::vector<double> cost(roadmap.vertex_count(), kInf);
-  using Entry = std::pair<double, std::uint32_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
-  cost[goal] = 0;
-  open.emplace(0, goal);
-  while (!open.empty()) {
-    const auto [c, v] = open.top();
-    open.pop();
-    if (c > cost[v]) continue;
-    for (const std::uint32_t e : roadmap.edges_at(v)) {
-      const RoadmapEdge& edge = roadmap.edge(e);
-      if (!usable(edge, valid_edges_only)) continue;
-      const std::uint32_t w = edge.a == v ? edge.b : edge.a;
-      if (c + edge.length < cost[w]) {
-        cost[w] = c + edge.length;
-        open.emplace(cost[w], w);
-      }
-    }
-  }
-  return cost;
+  GoalDistances distances;
+  distances.compute(roadmap, goal, valid_edges_only);
+  return distances.cost();
 }
 
 }  // namespace gplanner

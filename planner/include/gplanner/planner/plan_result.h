@@ -39,7 +39,7 @@ struct PlanOptions {
   int neighbors = 15;             // k
   // Lazy PRM: one batch checks the unknown edges of the shortest path and of up to this
   // many - 1 next shortest ones (1: the shortest path's only).
-  int lazy_batch_paths = 16;
+  int lazy_batch_paths = 64;
   int shortcut_rounds = 6;
   int shortcut_candidates = 256;
   // The found path is re-checked at the edge resolution divided by this (1: not at all)

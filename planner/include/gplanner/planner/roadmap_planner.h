@@ -17,6 +17,7 @@
 #include <unordered_set>
 
 #include "gplanner/planner/collision_checker.h"
+#include "gplanner/planner/goal_distances.h"
 #include "gplanner/planner/graph_search.h"
 #include "gplanner/planner/local_planner.h"
 #include "gplanner/planner/milestone_sampler.h"
@@ -71,7 +72,7 @@ class RoadmapPlanner {
   // Lazy PRM: adds to `batch` (the shortest path's unknown edges) those of the next
   // shortest paths, up to options_.lazy_batch_paths paths in all; shortest_vertices:
   // the shortest path's vertex count.
-  void add_next_paths(const std::vector<double>& to_goal, std::uint32_t s, std::uint32_t g,
+  void add_next_paths(const GoalDistances& to_goal, std::uint32_t s, std::uint32_t g,
                       std::size_t shortest_vertices, std::vector<std::uint32_t>* batch,
                       PlanResult* result);
   bool out_of_time(PlanResult* result) const;

@@ -16,11 +16,6 @@ using MinQueue = std::priority_queue<Entry, std::vector<Entry>, std::greater<Ent
 
 }  // namespace
 
-bool GoalDistances::usable(const RoadmapEdge& edge) const {
-  if (edge.state == EdgeState::kInvalid) return false;
-  return !valid_edges_only_ || edge.state == EdgeState::kValid;
-}
-
 void GoalDistances::compute(const Roadmap& roadmap, std::uint32_t goal, bool valid_edges_only) {
   valid_edges_only_ = valid_edges_only;
   cost_.assign(roadmap.vertex_count(), kInf);
@@ -35,7 +30,7 @@ void GoalDistances::compute(const Roadmap& roadmap, std::uint32_t goal, bool val
     if (c > cost_[v]) continue;
     for (const std::uint32_t e : roadmap.edges_at(v)) {
       const RoadmapEdge& edge = roadmap.edge(e);
-      if (!usable(edge)) continue;
+      if (!usable(edge, valid_edges_only_)) continue;
       const std::uint32_t w = edge.a == v ? edge.b : edge.a;
       if (c + edge.length < cost_[w]) {
         cost_[w] = c + edge.length;
@@ -58,7 +53,7 @@ std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
   found.clear();
   for (const std::uint32_t e : edges) {
     const RoadmapEdge& edge = roadmap.edge(e);
-    if (usable(edge)) continue;
+    if (usable(edge, valid_edges_only_)) continue;
     for (const std::uint32_t v : {edge.a, edge.b}) {
       if (via_[v] == e && !affected_[v]) {
         affected_[v] = 1;
@@ -89,7 +84,7 @@ std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
     via_[v] = kNone;
     for (const std::uint32_t e : roadmap.edges_at(v)) {
       const RoadmapEdge& edge = roadmap.edge(e);
-      if (!usable(edge)) continue;
+      if (!usable(edge, valid_edges_only_)) continue;
       const std::uint32_t w = edge.a == v ? edge.b : edge.a;
       if (affected_[w]) continue;
       if (cost_[w] + edge.length < cost_[v]) {
@@ -105,7 +100,7 @@ std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
     if (c > cost_[v]) continue;
     for (const std::uint32_t e : roadmap.edges_at(v)) {
       const RoadmapEdge& edge = roadmap.edge(e);
-      if (!usable(edge)) continue;
+      if (!usable(edge, valid_edges_only_)) continue;
       const std::uint32_t w = edge.a == v ? edge.b : edge.a;
       if (!affected_[w]) continue;
       if (c + edge.length < cost_[w]) {

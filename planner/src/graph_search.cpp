@@ -13,11 +13,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-bool usable(const RoadmapEdge& edge, bool valid_edges_only) {
-  if (edge.state == EdgeState::kInvalid) return false;
-  return !valid_edges_only || edge.state == EdgeState::kValid;
-}
-
 // Per-thread arrays of the last search, reused so that a search costs what it expands,
 // not the roadmap's size (lazy PRM searches a roadmap of 10^5 vertices hundreds of
 // times). An entry belongs to the current search when its stamp is the search's.

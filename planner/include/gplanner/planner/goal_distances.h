@@ -35,8 +35,6 @@ class GoalDistances {
   const std::vector<double>& cost() const { return cost_; }
 
  private:
-  bool usable(const RoadmapEdge& edge) const;
-
   bool valid_edges_only_ = false;
   std::vector<double> cost_;
   std::vector<std::uint32_t> via_;     // each vertex's first edge on its way to the goal

@@ -20,6 +20,13 @@ struct RoadmapEdge {
   EdgeState state = EdgeState::kUnknown;
 };
 
+// Whether a search may use the edge: never an invalid one, and with valid_edges_only
+// (PRM) only a valid one.
+inline bool usable(const RoadmapEdge& edge, bool valid_edges_only) {
+  if (edge.state == EdgeState::kInvalid) return false;
+  return !valid_edges_only || edge.state == EdgeState::kValid;
+}
+
 class Roadmap {
  public:
   explicit Roadmap(int width = 0) : width_(width) {}

@@ -14,6 +14,29 @@ constexpr std::uint32_t kNone = ~std::uint32_t(0);
 using Entry = std::pair<double, std::uint32_t>;  // (cost, vertex)
 using MinQueue = std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>>;
 
+// Dijkstra from the queued vertices outwards over the usable edges: each vertex is
+// settled at its least cost, and its edges lower their other ends' costs. (After
+// remove_edges seeds it, only the affected vertices can be lowered: the others keep the
+// costs of ways that still exist.)
+void settle(const Roadmap& roadmap, bool valid_edges_only, MinQueue* open,
+            std::vector<double>* cost, std::vector<std::uint32_t>* via) {
+  while (!open->empty()) {
+    const auto [c, v] = open->top();
+    open->pop();
+    if (c > (*cost)[v]) continue;
+    for (const std::uint32_t e : roadmap.edges_at(v)) {
+      const RoadmapEdge& edge = roadmap.edge(e);
+      if (!usable(edge, valid_edges_only)) continue;
+      const std::uint32_t w = edge.a == v ? edge.b : edge.a;
+      if (c + edge.length < (*cost)[w]) {
+        (*cost)[w] = c + edge.length;
+        (*via)[w] = e;
+        open->emplace((*cost)[w], w);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void GoalDistances::compute(const Roadmap& roadmap, std::uint32_t goal, bool valid_edges_only) {
@@ -24,21 +47,7 @@ void GoalDistances::compute(const Roadmap& roadmap, std::uint32_t goal, bool val
   MinQueue open;
   cost_[goal] = 0;
   open.emplace(0, goal);
-  while (!open.empty()) {
-    const auto [c, v] = open.top();
-    open.pop();
-    if (c > cost_[v]) continue;
-    for (const std::uint32_t e : roadmap.edges_at(v)) {
-      const RoadmapEdge& edge = roadmap.edge(e);
-      if (!usable(edge, valid_edges_only_)) continue;
-      const std::uint32_t w = edge.a == v ? edge.b : edge.a;
-      if (c + edge.length < cost_[w]) {
-        cost_[w] = c + edge.length;
-        via_[w] = e;
-        open.emplace(cost_[w], w);
-      }
-    }
-  }
+  settle(roadmap, valid_edges_only_, &open, &cost_, &via_);
 }
 
 std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
@@ -77,7 +86,7 @@ std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
     }
   }
   // They start from their best neighbour whose cost holds, then settle among themselves
-  // in cost order (Dijkstra restricted to them).
+  // in cost order.
   MinQueue open;
   for (const std::uint32_t v : found) {
     cost_[v] = kInf;
@@ -94,22 +103,7 @@ std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
     }
     if (via_[v] != kNone) open.emplace(cost_[v], v);
   }
-  while (!open.empty()) {
-    const auto [c, v] = open.top();
-    open.pop();
-    if (c > cost_[v]) continue;
-    for (const std::uint32_t e : roadmap.edges_at(v)) {
-      const RoadmapEdge& edge = roadmap.edge(e);
-      if (!usable(edge, valid_edges_only_)) continue;
-      const std::uint32_t w = edge.a == v ? edge.b : edge.a;
-      if (!affected_[w]) continue;
-      if (c + edge.length < cost_[w]) {
-        cost_[w] = c + edge.length;
-        via_[w] = e;
-        open.emplace(cost_[w], w);
-      }
-    }
-  }
+  settle(roadmap, valid_edges_only_, &open, &cost_, &via_);
   for (const std::uint32_t v : found) affected_[v] = 0;
   return found.size();
 }

@@ -4,8 +4,8 @@
 // used a removed edge are searched again, from their neighbours whose costs still hold.
 // Lazy PRM uses it as A*'s heuristic; exact, it leads the search straight along the
 // shortest path (a lower bound that only grows stale leads it around more and more of
-// the roadmap: on the humanoid the searches expanded 5x more vertices, which made the
-// search most of the plan's time).
+// the roadmap: on the humanoid, seed 2, the searches expanded 9x more vertices, and the
+// search was most of the plan's time).
 
 #include <cstddef>
 #include <cstdint>

@@ -6,7 +6,6 @@
 #include <queue>
 #include <utility>
 
-#include "gplanner/planner/goal_distances.h"
 
 namespace gplanner {
 namespace {
@@ -113,13 +112,6 @@ GraphPath shortest_path(const Roadmap& roadmap, const std::vector<double>& to_go
   return a_star(
       roadmap, start, goal, valid_edges_only, [&](std::uint32_t v) { return to_goal[v]; },
       max_expanded);
-}
-
-std::vector<double> cost_to_goal(const Roadmap& roadmap, std::uint32_t goal,
-                                 bool valid_edges_only) {
-  GoalDistances distances;
-  distances.compute(roadmap, goal, valid_edges_only);
-  return distances.cost();
 }
 
 }  // namespace gplanner

@@ -11,6 +11,8 @@
 #include <queue>
 #include <random>
 
+#include "gplanner/planner/goal_distances.h"
+
 namespace gplanner {
 namespace {
 
@@ -104,7 +106,9 @@ TEST(GraphSearch, SearchesOfRoadmapsOfChangingSizesStayExact) {
   for (const std::uint32_t size : {50u, 2000u, 200u, 7u, 1000u}) {
     const Roadmap roadmap = random_roadmap(metric, &rng, size);
     for (const bool valid_only : {false, true}) {
-      const std::vector<double> to_goal = cost_to_goal(roadmap, 1, valid_only);
+      GoalDistances distances;
+      distances.compute(roadmap, 1, valid_only);
+      const std::vector<double>& to_goal = distances.cost();
       const double expected = dijkstra(roadmap, 0, 1, valid_only);
       expect_shortest(roadmap, shortest_path(roadmap, metric, 0, 1, valid_only), expected,
                       valid_only);
@@ -143,8 +147,9 @@ TEST(GraphSearch, GivesUpAfterMaxExpanded) {
 }
 
 // The cost to the goal is every vertex's Dijkstra distance; computed once and kept while
-// edges turn invalid (as the lazy search keeps it), it still leads A* to shortest paths,
-// expanding fewer vertices than the metric heuristic.
+// edges turn invalid (as the lazy search's look-ahead keeps it past its repair bound),
+// it still leads A* to shortest paths, expanding fewer vertices than the metric
+// heuristic.
 TEST(GraphSearch, CostToGoalStaysAHeuristicWhileEdgesTurnInvalid) {
   ConfigurationMetric metric;
   metric.joint_count = 2;
@@ -153,7 +158,9 @@ TEST(GraphSearch, CostToGoalStaysAHeuristicWhileEdgesTurnInvalid) {
   for (int trial = 0; trial < 20; ++trial) {
     Roadmap roadmap = random_roadmap(metric, &rng);
     for (const bool valid_only : {false, true}) {
-      const std::vector<double> to_goal = cost_to_goal(roadmap, 1, valid_only);
+      GoalDistances distances;
+      distances.compute(roadmap, 1, valid_only);
+      const std::vector<double>& to_goal = distances.cost();
       ASSERT_EQ(to_goal.size(), roadmap.vertex_count());
       for (std::uint32_t v = 0; v < roadmap.vertex_count(); v += 17) {
         const double d = dijkstra(roadmap, v, 1, valid_only);

@@ -2,7 +2,7 @@
 // A* over a roadmap's edges, skipping invalid ones (and, when asked, unknown ones). The
 // heuristic is either the metric distance to the goal (admissible: an edge's length is
 // the metric distance between its ends) or a cost to the goal computed over the roadmap
-// itself (cost_to_goal), which stays a lower bound while edges only become invalid and
+// itself (GoalDistances), which stays a lower bound while edges only become invalid and
 // lets a lazy search go straight to the next best path instead of searching the whole
 // roadmap again.
 
@@ -33,12 +33,5 @@ GraphPath shortest_path(const Roadmap& roadmap, const ConfigurationMetric& metri
 GraphPath shortest_path(const Roadmap& roadmap, const std::vector<double>& to_goal,
                         std::uint32_t start, std::uint32_t goal, bool valid_edges_only,
                         std::size_t max_expanded = ~std::size_t(0));
-
-// Every vertex's least cost to `goal` over the usable edges (Dijkstra from the goal),
-// infinity where it cannot reach it. While edges only change from unknown to valid or
-// invalid it remains a consistent lower bound for shortest_path; after vertices or
-// edges are added it must be computed again.
-std::vector<double> cost_to_goal(const Roadmap& roadmap, std::uint32_t goal,
-                                 bool valid_edges_only);
 
 }  // namespace gplanner

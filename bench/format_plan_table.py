@@ -66,16 +66,9 @@ def print_ours_against_ompl(runs, median, cell):
     for scene in SCENES:
         if not any((scene, p) in runs for p in PLANNERS):
             continue
-        ratios = []
         ours, ours_bound = median(scene, "ours-lazyprm")
-        for base in ["ompl-lazyprm", "ompl-prm"]:
-            t, bound = median(scene, base)
-            if ours is None or t is None:
-                ratios.append("-")
-            elif ours_bound:
-                ratios.append("ours failed")
-            else:
-                ratios.append("%s%.0fx" % (">" if bound else "", t / ours))
+        ratios = [ratio(*median(scene, base), ours, ours_bound)
+                  for base in ["ompl-lazyprm", "ompl-prm"]]
         print("| %s | %s | %s |" % (scene, " | ".join(cell(scene, p) for p in PLANNERS),
                                     " | ".join(ratios)))
 
@@ -92,15 +85,8 @@ def print_first_path(runs, median):
         times = [r["seconds"] - (r["shortcut_seconds"] if r["solved"] else 0) for r in v]
         ours = statistics.median(times)
         ours_bound = sum(r["solved"] for r in v) * 2 <= len(v)
-        ratios = []
-        for base in ["ompl-lazyprm", "ompl-prm"]:
-            t, bound = median(scene, base)
-            if t is None:
-                ratios.append("-")
-            elif ours_bound:
-                ratios.append("ours failed")
-            else:
-                ratios.append("%s%.0fx" % (">" if bound else "", t / ours))
+        ratios = [ratio(*median(scene, base), ours, ours_bound)
+                  for base in ["ompl-lazyprm", "ompl-prm"]]
         print("| %s | %s s (%s-%s) | %s |" % (scene, fmt(ours), fmt(min(times)), fmt(max(times)),
                                             " | ".join(ratios)))
 
@@ -137,12 +123,7 @@ def print_with_simplification(runs, median):
                                                    fmt(max(times)), solved, len(v)))
             lengths.append(fmt(statistics.median(r["simplified_length"] for r in v
                                                  if r["solved"])) if solved else "-")
-            if ours is None:
-                ratios.append("-")
-            elif ours_bound:
-                ratios.append("ours failed")
-            else:
-                ratios.append("%s%.0fx" % (">" if bound else "", t / ours))
+            ratios.append(ratio(t, bound, ours, ours_bound))
         print("| %s | %s | %s | %s | %s |" % (scene, fmt(ours) + " s" if ours is not None else "-",
                                              " | ".join(cells), " | ".join(ratios),
                                              " / ".join(lengths)))
@@ -172,6 +153,16 @@ def print_plugin_against_fcl(runs, median, cell):
                 ratio = "%s%.2gx" % (">" if fcl_bound else "", fcl / gpu)
             cells += [cell(scene, b), cell(scene, b + "@gpu"), ratio]
         print("| %s | %s |" % (scene, " | ".join(cells)))
+
+
+def ratio(t, bound, ours, ours_bound):
+    """A baseline's median time t over ours: "-" where either is missing, "ours failed"
+    where half or more of ours found no path, ">" where t is a lower bound."""
+    if t is None or ours is None:
+        return "-"
+    if ours_bound:
+        return "ours failed"
+    return "%s%.0fx" % (">" if bound else "", t / ours)
 
 
 def fmt(t):

@@ -79,6 +79,7 @@ std::string gpu_details(gplanner::CollisionChecker* checker) {
       << std::setprecision(3) << stats.milliseconds << " ms on the GPU in " << stats.chunks
       << " chunk(s), " << stats.bv_tests << " BV tests, " << stats.triangle_tests
       << " triangle tests";
+  if (stats.jobs) out << ", " << stats.jobs << " body pairs past the broad phase";
   if (stats.rounds) out << ", " << stats.rounds << " rounds";
   if (stats.warp_per_pair) out << ", one kernel (small batch)";
   if (!stats.round_tasks.empty()) {

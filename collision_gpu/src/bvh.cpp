@@ -111,12 +111,15 @@ Bvh build_bvh(const double* vertices, int vertex_count, const int* triangles, in
                                         [&](int t) { return axis.dot(centroids[t]) < mean; }) -
                          order.begin());
     const int count = task.end - task.begin;
+    double split = mean;
     if (4 * (middle - task.begin) < count || 4 * (task.end - middle) < count) {
       middle = (task.begin + task.end) / 2;
       std::nth_element(
           order.begin() + task.begin, order.begin() + middle, order.begin() + task.end,
           [&](int a, int b) { return axis.dot(centroids[a]) < axis.dot(centroids[b]); });
+      split = axis.dot(centroids[order[middle]]);
     }
+    bvh.nodes[task.node].split = static_cast<float>(split);
     const int left = static_cast<int>(bvh.nodes.size());
     bvh.nodes[task.node].child = left;
     bvh.nodes.emplace_back();

@@ -39,7 +39,7 @@ struct Counters {
   unsigned int rounds;   // rounds that had tasks
   unsigned int steps;    // BV tests a task of this round runs at most
   unsigned int queue_full;
-  unsigned int finish;  // the queue is short: the finish kernel takes all of it
+  unsigned int finish;                      // the queue is short: the finish kernel takes all of it
   unsigned int round_tasks[kTracedRounds];  // tasks each of the first rounds took
 };
 
@@ -322,8 +322,8 @@ __global__ void __launch_bounds__(32 * kRootWarps)
     balanced_roots_warp_kernel(CollisionModelView m, const float* d_q, int n, Job* d_jobs,
                                int job_capacity, Task* d_tasks, std::uint8_t* d_verdicts,
                                Counters* d_counters) {
-  __shared__ float s_poses[kRootWarps][detail::kMaxLinks][12];   // X_PL, then X_WL
-  __shared__ float4 s_spheres[kRootWarps][detail::kMaxLinks];    // centre in the world
+  __shared__ float s_poses[kRootWarps][detail::kMaxLinks][12];  // X_PL, then X_WL
+  __shared__ float4 s_spheres[kRootWarps][detail::kMaxLinks];   // centre in the world
   const int warp = threadIdx.x / 32;
   const unsigned lane = threadIdx.x & 31;
   const int i = blockIdx.x * kRootWarps + warp;
@@ -339,9 +339,9 @@ __global__ void __launch_bounds__(32 * kRootWarps)
   __syncwarp();
   if (lane == 0) {
     for (int l = 1; l < m.link_count; ++l) {
-      store_transform(detail::load_transform(poses[m.links[l].parent]) *
-                          detail::load_transform(poses[l]),
-                      poses[l]);
+      store_transform(
+          detail::load_transform(poses[m.links[l].parent]) * detail::load_transform(poses[l]),
+          poses[l]);
     }
   }
   __syncwarp();
@@ -459,8 +459,8 @@ __global__ void __launch_bounds__(32 * kPairWarps)
           if (na.is_leaf() && nb.is_leaf()) {
             ++counts.triangle_tests;
             hit = detail::leaf_collides(m.triangles[body_a.triangle_offset + na.triangle()],
-                                        m.triangles[body_b.triangle_offset + nb.triangle()],
-                                        X_AB, m.threshold);
+                                        m.triangles[body_b.triangle_offset + nb.triangle()], X_AB,
+                                        m.threshold);
           } else {
             // split_pair's rule without its order of the children (which loads both):
             // the next step tests them side by side anyway.
@@ -501,12 +501,18 @@ __global__ void __launch_bounds__(32 * kPairWarps)
 // many threads in the next launch, long enough that a query finding a collision stops
 // its own search early.
 constexpr int kTaskSteps = 32;
-// Threads per block of the task kernel, with 33 stack entries each in shared memory
-// (34 KB a block; how many blocks an SM holds is set by the carve-out). Measured
-// on the H100 at 50,000 to 100,000 queries against 256 threads with stacks in local
-// memory: 4 to 17 % faster on every scene; 16-step tasks (half the stack) did more BV
-// tests and were slower than either.
+// Threads per block of the task kernel, with kStackEntries stack entries each in shared
+// memory (how many blocks an SM holds is set by the carve-out). Measured on the H100 at
+// 50,000 to 100,000 queries against 256 threads with stacks in local memory: 4 to 17 %
+// faster on every scene; 16-step tasks did more BV tests and were slower than either.
 constexpr int kTaskThreads = 128;
+// A task whose stack fills hands it back before its steps are used up. 24 entries
+// (25 KB a block) let six blocks share an SM's 164 KB of shared memory where the 33 that
+// 32 steps can reach let four; few stacks grow that deep. Measured on the H100 in one run,
+// two passes, against 33 entries: humanoid, pr2_reach and pr2_base_arm 11 to 17 %
+// faster, the other scenes within 3 %; 16 entries handed back so often that the
+// traversals did 15 to 85 % more BV tests and were slower everywhere.
+constexpr int kStackEntries = 24;
 // Once a round has fewer tasks than kTailTasks the GPU has room to spare, and tasks run
 // kTailSteps: the remaining hard queries spread over more threads sooner.
 constexpr unsigned kTailTasks = 65536;
@@ -534,12 +540,12 @@ __global__ void __launch_bounds__(kTaskThreads, 6)
   const Task* d_tasks = d_queue + d_counters->begin;
   const unsigned lane = threadIdx.x & 31;
   detail::TraversalCounts counts;
-  // Each step pops one pair and pushes at most two: kTaskSteps + 1 entries suffice.
-  // The stacks live in shared memory, entry k of all threads side by side, so that a
-  // lane always meets the same bank whatever its depth: in local memory they missed the
-  // L1 and stalled the warps on L2 (Nsight Compute on the H100: 19 cycles of
-  // long-scoreboard stall an instruction in the big rounds).
-  __shared__ int2 s_stacks[kTaskSteps + 1][kTaskThreads];
+  // Each step pops one pair and pushes at most two; a stack that reaches kStackEntries
+  // is handed back. The stacks live in shared memory, entry k of all threads side by
+  // side, so that a lane always meets the same bank whatever its depth: in local memory
+  // they missed the L1 and stalled the warps on L2 (Nsight Compute on the H100: 19
+  // cycles of long-scoreboard stall an instruction in the big rounds).
+  __shared__ int2 s_stacks[kStackEntries][kTaskThreads];
   int2* stack = &s_stacks[0][threadIdx.x];
   int top = 0, job_index = 0, query = 0;
   unsigned steps = 0;
@@ -607,13 +613,13 @@ __global__ void __launch_bounds__(kTaskThreads, 6)
             }
           } else {
             detail::NodePair first, second;
-            detail::split_pair(m, body_a, body_b, X_AB, X_BA, ia, ib, na, nb, &first, &second);
+            detail::split_pair(X_AB, X_BA, ia, ib, na, nb, &first, &second);
             stack[top * kTaskThreads] = make_int2(second.a, second.b);
             stack[(top + 1) * kTaskThreads] = make_int2(first.a, first.b);
             top += 2;
           }
         }
-        if (top > 0 && steps == max_steps) hand_back = true;
+        if (top > 0 && (steps == max_steps || top >= kStackEntries)) hand_back = true;
       }
     }
     // Warp-aggregated append of the stacks handed back.
@@ -674,8 +680,8 @@ __global__ void __launch_bounds__(256, 2)
 // their children.
 __device__ void advance_queue(Counters& c, unsigned task_capacity, unsigned max_launch) {
   const unsigned top = c.begin + c.tasks;
-  // A task leaves at most kTaskSteps + 1 pairs in place of itself.
-  const unsigned room = (task_capacity - top) / (kTaskSteps + 1);
+  // A task leaves at most kStackEntries pairs in place of itself.
+  const unsigned room = (task_capacity - top) / kStackEntries;
   const unsigned launch = min(top, min(room, max_launch));
   if (top > 0 && launch == 0) c.queue_full = 1;
   // A short queue goes to the finish kernel whole; the rounds' kernels then do nothing.
@@ -761,9 +767,10 @@ struct GpuBatchChecker::Impl {
     int blocks_per_sm = 0;
     // The shared-memory share of the SM's 256 KB of L1 and shared memory that the task
     // kernel asks for, in percent of the largest (the driver rounds it to a size the SM
-    // has): measured on the H100 at 100 (six blocks, 28 KB of L1 left for the nodes),
-    // 80, 60 and 40: 60 and 80 were fastest, 60 on more scenes; 100 and 40 were 11 to
-    // 51 % slower than 60.
+    // has): measured on the H100, with 33-entry stacks, at 100 (28 KB of L1 left for the
+    // nodes), 80, 60 and 40: 60 and 80 were fastest, 60 on more scenes; 100 and 40 were
+    // 11 to 51 % slower than 60. With 24-entry stacks, 60 (164 KB) holds six blocks; 50
+    // (five blocks, more L1) was within the runs' spread of it.
     check_cuda(cudaFuncSetAttribute(balanced_task_kernel,
                                     cudaFuncAttributePreferredSharedMemoryCarveout, 60),
                "carve-out");
@@ -798,16 +805,15 @@ struct GpuBatchChecker::Impl {
     many_bodies = view.link_count + view.pair_count > 32;
     pair_stack_capacity = 64 * (host.traversal_depth + 1);
     const std::size_t stack_bytes = pair_stack_capacity * sizeof(int2);  // at most 66 KB
-    pair_warps = static_cast<int>(std::clamp<std::size_t>(
-        properties.sharedMemPerBlockOptin / stack_bytes, 1, kPairWarps));
+    pair_warps = static_cast<int>(
+        std::clamp<std::size_t>(properties.sharedMemPerBlockOptin / stack_bytes, 1, kPairWarps));
     for (auto* kernel : {balanced_warp_per_pair_kernel<false>, balanced_warp_per_pair_kernel<true>})
       check_cuda(cudaFuncSetAttribute(kernel, cudaFuncAttributeMaxDynamicSharedMemorySize,
                                       static_cast<int>(pair_warps * stack_bytes)),
                  "shared memory of the small-batch kernel");
-    check_cuda(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm,
-                                                             balanced_warp_per_pair_kernel<false>,
-                                                             32 * pair_warps,
-                                                             pair_warps * stack_bytes),
+    check_cuda(cudaOccupancyMaxActiveBlocksPerMultiprocessor(
+                   &blocks_per_sm, balanced_warp_per_pair_kernel<false>, 32 * pair_warps,
+                   pair_warps * stack_bytes),
                "occupancy");
     pair_blocks = std::max(1, blocks_per_sm) * properties.multiProcessorCount;
   }
@@ -881,10 +887,9 @@ struct GpuBatchChecker::Impl {
           view, configurations.get(), n, jobs.get(), static_cast<int>(job_capacity), tasks.get(),
           verdicts.get(), counters.get());
     } else {
-      balanced_roots_kernel<<<blocks_for(n, 128), 128>>>(view, configurations.get(), n, jobs.get(),
-                                                         static_cast<int>(job_capacity),
-                                                         tasks.get(), verdicts.get(),
-                                                         counters.get());
+      balanced_roots_kernel<<<blocks_for(n, 128), 128>>>(
+          view, configurations.get(), n, jobs.get(), static_cast<int>(job_capacity), tasks.get(),
+          verdicts.get(), counters.get());
     }
     check_cuda(cudaGetLastError(), "balanced roots kernel");
     stats.root_lanes = warp_roots ? 32 : 1;
@@ -898,11 +903,14 @@ struct GpuBatchChecker::Impl {
               view, jobs.get(), nullptr, pair_stack_capacity, verdicts.get(), counters.get());
       check_cuda(cudaGetLastError(), "balanced small-batch kernel");
       stats.warp_per_pair = true;
-      return !read_counters().jobs_overflow;
+      const Counters c = read_counters();
+      if (c.jobs_overflow) return false;
+      stats.jobs += c.jobs;
+      return true;
     }
-    // Each task may leave up to kTaskSteps + 1 node pairs behind.
-    const unsigned max_launch = static_cast<unsigned>(
-        std::min<std::size_t>(1u << 20, children_capacity / (kTaskSteps + 1)));
+    // Each task may leave up to kStackEntries node pairs behind.
+    const unsigned max_launch =
+        static_cast<unsigned>(std::min<std::size_t>(1u << 20, children_capacity / kStackEntries));
     const unsigned capacity = static_cast<unsigned>(std::min<std::size_t>(task_capacity, ~0u));
     balanced_start_kernel<<<1, 1>>>(counters.get(), capacity, max_launch);
     Counters c;
@@ -932,6 +940,7 @@ struct GpuBatchChecker::Impl {
       if (c.finish || c.top == 0) break;
     }
     stats.rounds += c.rounds;
+    stats.jobs += c.jobs;
     if (c.finish) stats.finished_tasks += c.top;
     for (unsigned r = 0; r < std::min<unsigned>(c.rounds, kTracedRounds); ++r)
       stats.round_tasks.push_back(c.round_tasks[r]);
@@ -955,12 +964,12 @@ struct GpuBatchChecker::Impl {
           std::min({chunk * bodies, static_cast<std::size_t>(0.3 * memory_cap) / sizeof(Job),
                     std::size_t(1) << 24});
       task_capacity =
-          std::max<std::size_t>(2 * job_capacity + 4 * (kTaskSteps + 1),
+          std::max<std::size_t>(2 * job_capacity + 4 * kStackEntries,
                                 std::min(static_cast<std::size_t>(0.25 * memory_cap) / sizeof(Task),
                                          std::size_t(1) << 27));
       jobs.reserve(job_capacity);
       tasks.reserve(task_capacity);
-      children_capacity = std::min<std::size_t>(task_capacity, std::size_t(kTaskSteps + 1) << 20);
+      children_capacity = std::min<std::size_t>(task_capacity, std::size_t(kStackEntries) << 20);
       children.reserve(children_capacity);
       leaf_capacity = std::max<std::size_t>(
           1024, std::min<std::size_t>(std::size_t(1) << 22,
@@ -989,10 +998,10 @@ struct GpuBatchChecker::Impl {
       } else {
         static_assert(offsetof(Counters, jobs_overflow) == offsetof(Counters, jobs) + 4 &&
                       offsetof(Counters, next_job) == offsetof(Counters, jobs) + 8);
-        check_cuda(cudaMemsetAsync(reinterpret_cast<char*>(counters.get()) +
-                                       offsetof(Counters, jobs),
-                                   0, 3 * sizeof(unsigned)),
-                   "memset");
+        check_cuda(
+            cudaMemsetAsync(reinterpret_cast<char*>(counters.get()) + offsetof(Counters, jobs), 0,
+                            3 * sizeof(unsigned)),
+            "memset");
         if (!run_balanced(m, job_capacity, task_capacity, children_capacity, leaf_capacity)) {
           if (chunk == 1)
             throw std::runtime_error("balanced traversal: one query needs more jobs than fit");

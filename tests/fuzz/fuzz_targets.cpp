@@ -168,6 +168,33 @@ void triangle_soup(const std::uint8_t* data, std::size_t size) {
   }
   for (const int count : seen)
     if (count != 1) finding("a triangle is in no leaf or in several");
+  // An inner node's split parts its children: the first child's triangle centroids lie
+  // at or below it along the node's first axis, the second child's at or above
+  // (subtree_extremes: the least and greatest centroid of subtree n along that axis).
+  auto subtree_extremes = [&](auto&& self, int n, const BvhNode& along) -> std::pair<float, float> {
+    const BvhNode& node = bvh.nodes[n];
+    if (node.is_leaf()) {
+      const BvhTriangle& t = bvh.triangles[node.triangle()];
+      float c = 0;
+      for (int k = 0; k < 3; ++k)
+        c += along.axes[0] * t.v[k][0] + along.axes[3] * t.v[k][1] + along.axes[6] * t.v[k][2];
+      return {c / 3, c / 3};
+    }
+    const auto a = self(self, node.child, along), b = self(self, node.child + 1, along);
+    return {std::min(a.first, b.first), std::max(a.second, b.second)};
+  };
+  float largest = 1e-30f;  // largest coordinate: the projections' float rounding scales with it
+  for (const BvhTriangle& t : bvh.triangles)
+    for (int k = 0; k < 3; ++k)
+      largest =
+          std::max({largest, std::fabs(t.v[k][0]), std::fabs(t.v[k][1]), std::fabs(t.v[k][2])});
+  for (const BvhNode& node : bvh.nodes) {
+    if (node.is_leaf()) continue;
+    const auto below = subtree_extremes(subtree_extremes, node.child, node);
+    const auto above = subtree_extremes(subtree_extremes, node.child + 1, node);
+    if (below.second > node.split + 1e-5f * largest || above.first < node.split - 1e-5f * largest)
+      finding("an inner node's split does not part its children");
+  }
 }
 
 }  // namespace gplanner::fuzz

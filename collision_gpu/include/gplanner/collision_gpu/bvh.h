@@ -10,7 +10,7 @@
 
 namespace gplanner {
 
-// 80 bytes (68 used, padded to 16-byte alignment). Inner nodes have children at `child`
+// 80 bytes (72 used, padded to 16-byte alignment). Inner nodes have children at `child`
 // and `child + 1`; a leaf holds one triangle, encoded as child = -(triangle + 1).
 struct alignas(16) BvhNode {
   float center[3];
@@ -18,6 +18,10 @@ struct alignas(16) BvhNode {
   float axes[9];  // row-major; the columns are the box's unit axes
   float extent[3];
   float radius;  // |extent|: the box's bounding sphere about its centre, for a cheap first test
+  // Inner nodes: where the children part along the box's first axis (column 0 of axes),
+  // in the body's frame: `child` holds the triangles whose centroids lie below it. Lets
+  // a traversal order the children without loading them.
+  float split;
 
   GP_HD bool is_leaf() const { return child < 0; }
   GP_HD int triangle() const { return -child - 1; }

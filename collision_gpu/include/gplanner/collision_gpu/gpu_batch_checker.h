@@ -48,6 +48,7 @@ struct GpuCheckStats {
   bool warp_per_pair = false;  // balanced: the small-batch kernel ran (no rounds)
   std::vector<unsigned> round_tasks;  // balanced: tasks per round (the first 32 of each chunk)
   std::size_t finished_tasks = 0;     // balanced: tasks the rounds left to the finish kernel
+  std::size_t jobs = 0;               // balanced: body pairs past the broad phase
   unsigned long long bv_tests = 0;
   unsigned long long triangle_tests = 0;
 };

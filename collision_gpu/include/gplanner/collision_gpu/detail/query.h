@@ -69,7 +69,8 @@ GP_HD Xf joint_transform(const CollisionModelView& m, int l, const float* q) {
 // X_WL of every link (shape: [m.link_count]).
 GP_HD void link_poses(const CollisionModelView& m, const float* q, Xf* X_WL) {
   X_WL[0] = base_pose(m, q);
-  for (int l = 1; l < m.link_count; ++l) X_WL[l] = X_WL[m.links[l].parent] * joint_transform(m, l, q);
+  for (int l = 1; l < m.link_count; ++l)
+    X_WL[l] = X_WL[m.links[l].parent] * joint_transform(m, l, q);
 }
 
 GP_HD geometry::Vec3<double> widen(V3f p) { return {double(p.x), double(p.y), double(p.z)}; }
@@ -126,12 +127,6 @@ GP_HD bool nodes_overlap(const BvhNode& na, const BvhNode& nb, const Xf& X_AB, f
   return geometry::obbs_overlap(node_box(na), geometry::transformed(node_box(nb), X_AB), margin);
 }
 
-// Squared distance from a node's box centre to point p (in the node's frame).
-GP_HD float squared_distance(const BvhNode& n, V3f p) {
-  const V3f d = p - V3f{n.center[0], n.center[1], n.center[2]};
-  return geometry::dot(d, d);
-}
-
 GP_HD float box_size(const BvhNode& n) {
   return n.extent[0] * n.extent[0] + n.extent[1] * n.extent[1] + n.extent[2] * n.extent[2];
 }
@@ -147,24 +142,29 @@ struct NodePair {
 };
 
 // The two child pairs of an overlapping inner node pair (ia, ib): the larger box is
-// split, and the child whose centre lies nearer the other box's centre comes first,
-// being the likelier to hold a collision, so that a query stops sooner. X_BA is the
-// inverse of X_AB, computed once per body pair by the caller.
-GP_HD void split_pair(const CollisionModelView& m, BodyRange a, BodyRange b, const Xf& X_AB,
-                      const Xf& X_BA, int ia, int ib, const BvhNode& na, const BvhNode& nb,
-                      NodePair* first, NodePair* second) {
+// split, and the child on the same side of its split plane as the other box's centre
+// comes first, being the likelier to hold a collision, so that a query stops sooner.
+// The children themselves are not loaded: on the GPU that load was a second dependent
+// memory access in every step (measured on the H100 against ordering by the distance
+// to the children's centres: 0 to 10 % faster on every scene, the same verdicts, BV
+// tests within 5 %). X_BA is the inverse of X_AB, computed once per body pair by the
+// caller.
+GP_HD bool nearer_second_child(const BvhNode& n, V3f c) {
+  return n.axes[0] * c.x + n.axes[3] * c.y + n.axes[6] * c.z >= n.split;
+}
+
+GP_HD void split_pair(const Xf& X_AB, const Xf& X_BA, int ia, int ib, const BvhNode& na,
+                      const BvhNode& nb, NodePair* first, NodePair* second) {
   if (splits_a(na, nb)) {
-    const V3f c = X_AB * V3f{nb.center[0], nb.center[1], nb.center[2]};
-    const bool swap = squared_distance(m.nodes[a.node_offset + na.child + 1], c) <
-                      squared_distance(m.nodes[a.node_offset + na.child], c);
-    *first = {na.child + (swap ? 1 : 0), ib};
-    *second = {na.child + (swap ? 0 : 1), ib};
+    const int swap =
+        nearer_second_child(na, X_AB * V3f{nb.center[0], nb.center[1], nb.center[2]}) ? 1 : 0;
+    *first = {na.child + swap, ib};
+    *second = {na.child + 1 - swap, ib};
   } else {
-    const V3f c = X_BA * V3f{na.center[0], na.center[1], na.center[2]};
-    const bool swap = squared_distance(m.nodes[b.node_offset + nb.child + 1], c) <
-                      squared_distance(m.nodes[b.node_offset + nb.child], c);
-    *first = {ia, nb.child + (swap ? 1 : 0)};
-    *second = {ia, nb.child + (swap ? 0 : 1)};
+    const int swap =
+        nearer_second_child(nb, X_BA * V3f{na.center[0], na.center[1], na.center[2]}) ? 1 : 0;
+    *first = {ia, nb.child + swap};
+    *second = {ia, nb.child + 1 - swap};
   }
 }
 
@@ -194,7 +194,7 @@ GP_HD bool bodies_collide(const CollisionModelView& m, BodyRange a, BodyRange b,
       continue;
     }
     NodePair first, second;
-    split_pair(m, a, b, X_AB, X_BA, ia, ib, na, nb, &first, &second);
+    split_pair(X_AB, X_BA, ia, ib, na, nb, &first, &second);
     stack_a[top] = second.a;
     stack_b[top] = second.b;
     ++top;
@@ -226,8 +226,8 @@ GP_HD bool link_may_touch_environment(const CollisionModelView& m, int l, const 
 // ca_W and cb_W in the world).
 GP_HD bool spheres_may_touch(const CollisionModelView& m, int p, V3f ca_W, V3f cb_W) {
   const V3f d = ca_W - cb_W;
-  const float reach = m.link_spheres[m.pair_a[p]].radius + m.link_spheres[m.pair_b[p]].radius +
-                      m.margin;
+  const float reach =
+      m.link_spheres[m.pair_a[p]].radius + m.link_spheres[m.pair_b[p]].radius + m.margin;
   return geometry::dot(d, d) <= reach * reach;
 }
 

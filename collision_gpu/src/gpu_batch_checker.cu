@@ -509,9 +509,10 @@ constexpr int kTaskThreads = 128;
 // A task whose stack fills hands it back before its steps are used up. 24 entries
 // (25 KB a block) let six blocks share an SM's 164 KB of shared memory where the 33 that
 // 32 steps can reach let four; few stacks grow that deep. Measured on the H100 in one run,
-// two passes, against 33 entries: humanoid, pr2_reach and pr2_base_arm 11 to 17 %
-// faster, the other scenes within 3 %; 16 entries handed back so often that the
-// traversals did 15 to 85 % more BV tests and were slower everywhere.
+// two passes, against 33 entries: the humanoid 11 to 14 % faster, pr2_base_arm 10 to
+// 11 %, pr2_reach 4 to 6 %, the large piano 3 to 4 % slower, the rest within 3 %; 16
+// entries handed back so often that the traversals did 8 to 87 % more BV tests and were
+// slower everywhere.
 constexpr int kStackEntries = 24;
 // Once a round has fewer tasks than kTailTasks the GPU has room to spare, and tasks run
 // kTailSteps: the remaining hard queries spread over more threads sooner.

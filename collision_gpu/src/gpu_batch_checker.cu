@@ -771,7 +771,8 @@ struct GpuBatchChecker::Impl {
     // has): measured on the H100, with 33-entry stacks, at 100 (28 KB of L1 left for the
     // nodes), 80, 60 and 40: 60 and 80 were fastest, 60 on more scenes; 100 and 40 were
     // 11 to 51 % slower than 60. With 24-entry stacks, 60 (164 KB) holds six blocks; 50
-    // (five blocks, more L1) was within the runs' spread of it.
+    // (five blocks, more L1) was 4 to 6 % faster on the two detailed pianos and up to 7 %
+    // slower on the humanoid.
     check_cuda(cudaFuncSetAttribute(balanced_task_kernel,
                                     cudaFuncAttributePreferredSharedMemoryCarveout, 60),
                "carve-out");

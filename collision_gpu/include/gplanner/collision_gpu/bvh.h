@@ -19,8 +19,9 @@ struct alignas(16) BvhNode {
   float extent[3];
   float radius;  // |extent|: the box's bounding sphere about its centre, for a cheap first test
   // Inner nodes: where the children part along the box's first axis (column 0 of axes),
-  // in the body's frame: `child` holds the triangles whose centroids lie below it. Lets
-  // a traversal order the children without loading them.
+  // in the body's frame: `child` holds the triangles whose centroids lie at or below it,
+  // `child + 1` those at or above. Lets a traversal order the children without loading
+  // them.
   float split;
 
   GP_HD bool is_leaf() const { return child < 0; }

@@ -739,9 +739,10 @@ struct GpuBatchChecker::Impl {
   // then batches of up to kWarpRootsUpTo queries run kinematics and broad phase a warp
   // per query.
   bool many_bodies = false;
-  int pair_stack_capacity = 0;  // balanced, small batches: node pairs per warp's stack
-  int pair_warps = 1;           // warps (stacks) per block of the small-batch kernel
-  int pair_blocks = 1;          // resident blocks of the small-batch kernel
+  int pair_stack_capacity = 0;        // balanced, small batches: node pairs per warp's stack
+  int pair_warps = 1;                 // warps (stacks) per block of the small-batch kernel
+  int pair_blocks = 1;                // resident blocks of the small-batch kernel
+  std::size_t pair_shared_bytes = 0;  // its dynamic shared memory: pair_warps stacks
   GpuCheckStats stats;
 
   DeviceBuffer<LinkKinematics> links;
@@ -814,13 +815,14 @@ struct GpuBatchChecker::Impl {
     const std::size_t stack_bytes = pair_stack_capacity * sizeof(int2);  // at most 66 KB
     pair_warps = static_cast<int>(
         std::clamp<std::size_t>(properties.sharedMemPerBlockOptin / stack_bytes, 1, kPairWarps));
+    pair_shared_bytes = pair_warps * stack_bytes;
     for (auto* kernel : {balanced_warp_per_pair_kernel<false>, balanced_warp_per_pair_kernel<true>})
       check_cuda(cudaFuncSetAttribute(kernel, cudaFuncAttributeMaxDynamicSharedMemorySize,
-                                      static_cast<int>(pair_warps * stack_bytes)),
+                                      static_cast<int>(pair_shared_bytes)),
                  "shared memory of the small-batch kernel");
-    check_cuda(cudaOccupancyMaxActiveBlocksPerMultiprocessor(
-                   &blocks_per_sm, balanced_warp_per_pair_kernel<false>, 32 * pair_warps,
-                   pair_warps * stack_bytes),
+    check_cuda(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm,
+                                                             balanced_warp_per_pair_kernel<false>,
+                                                             32 * pair_warps, pair_shared_bytes),
                "occupancy");
     pair_blocks = std::max(1, blocks_per_sm) * properties.multiProcessorCount;
   }
@@ -905,9 +907,8 @@ struct GpuBatchChecker::Impl {
                                     : many_bodies ? 1024
                                                   : 10;
     if (static_cast<std::size_t>(n) <= small_batch) {
-      balanced_warp_per_pair_kernel<false>
-          <<<pair_blocks, 32 * pair_warps, pair_warps * pair_stack_capacity * sizeof(int2)>>>(
-              view, jobs.get(), nullptr, pair_stack_capacity, verdicts.get(), counters.get());
+      balanced_warp_per_pair_kernel<false><<<pair_blocks, 32 * pair_warps, pair_shared_bytes>>>(
+          view, jobs.get(), nullptr, pair_stack_capacity, verdicts.get(), counters.get());
       check_cuda(cudaGetLastError(), "balanced small-batch kernel");
       stats.warp_per_pair = true;
       const Counters c = read_counters();
@@ -936,9 +937,8 @@ struct GpuBatchChecker::Impl {
       }
       // Nothing to do unless a round left a short queue (then the rounds above it did
       // nothing either).
-      balanced_warp_per_pair_kernel<true>
-          <<<pair_blocks, 32 * pair_warps, pair_warps * pair_stack_capacity * sizeof(int2)>>>(
-              view, jobs.get(), tasks.get(), pair_stack_capacity, verdicts.get(), counters.get());
+      balanced_warp_per_pair_kernel<true><<<pair_blocks, 32 * pair_warps, pair_shared_bytes>>>(
+          view, jobs.get(), tasks.get(), pair_stack_capacity, verdicts.get(), counters.get());
       check_cuda(cudaGetLastError(), "balanced traversal kernels");
       c = read_counters();
       if (c.jobs_overflow) return false;

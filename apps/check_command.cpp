@@ -13,12 +13,12 @@
 #include <stdexcept>
 
 #include "command_line.h"
-#include "gplanner/planner/atomic_file.h"
-#include "gplanner/planner/checker_comparison.h"
-#include "gplanner/planner/checker_factory.h"
-#include "gplanner/planner/gpu_checker.h"
-#include "gplanner/planner/scene.h"
-#include "gplanner/planner/scene_collision_model.h"
+#include "gplanner/planner/checkers/checker_comparison.h"
+#include "gplanner/planner/checkers/checker_factory.h"
+#include "gplanner/planner/checkers/gpu_checker.h"
+#include "gplanner/planner/output/atomic_file.h"
+#include "gplanner/planner/scene/scene.h"
+#include "gplanner/planner/scene/scene_collision_model.h"
 
 namespace gplan {
 namespace {
@@ -93,11 +93,10 @@ std::string gpu_details(gplanner::CollisionChecker* checker) {
 }  // namespace
 
 int run_check(int argc, char** argv) {
-  const CommandLine args(
-      argc, argv, 2,
-      {"n", "seed", "backend", "traversal", "compare", "threads", "memory-cap-mb", "small-batch",
-       "out", "repeat"},
-      {"json"});
+  const CommandLine args(argc, argv, 2,
+                         {"n", "seed", "backend", "traversal", "compare", "threads",
+                          "memory-cap-mb", "small-batch", "out", "repeat"},
+                         {"json"});
   if (args.positionals().size() != 1) throw UsageError("gplan check takes one scene file");
   const std::string scene_file = args.positionals()[0];
   const std::size_t n = static_cast<std::size_t>(args.count("n", 10000));

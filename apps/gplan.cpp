@@ -5,8 +5,8 @@
 
 #include "check_command.h"
 #include "command_line.h"
-#include "gplanner/collision_gpu/gpu_device.h"
-#include "gplanner/planner/input_error.h"
+#include "gplanner/common/gpu_device.h"
+#include "gplanner/planner/scene/input_error.h"
 #include "plan_command.h"
 
 namespace {

@@ -8,13 +8,13 @@
 #include <sstream>
 
 #include "command_line.h"
-#include "gplanner/planner/checker_factory.h"
-#include "gplanner/planner/neighbor_finder.h"
-#include "gplanner/planner/path_file.h"
-#include "gplanner/planner/path_picture.h"
-#include "gplanner/planner/roadmap_planner.h"
-#include "gplanner/planner/scene.h"
-#include "gplanner/planner/scene_metric.h"
+#include "gplanner/planner/checkers/checker_factory.h"
+#include "gplanner/planner/output/path_file.h"
+#include "gplanner/planner/output/path_picture.h"
+#include "gplanner/planner/planning/neighbor_finder.h"
+#include "gplanner/planner/planning/roadmap_planner.h"
+#include "gplanner/planner/planning/scene_metric.h"
+#include "gplanner/planner/scene/scene.h"
 
 namespace gplan {
 namespace {
@@ -150,8 +150,7 @@ int run_plan(int argc, char** argv) {
               << ",\"edges\":" << result.edges << ",\"edges_checked\":" << result.edges_checked
               << ",\"states_checked\":" << result.states_checked
               << ",\"samples_checked\":" << result.samples_checked
-              << ",\"searches\":" << result.searches
-              << ",\"edge_batches\":" << result.edge_batches
+              << ",\"searches\":" << result.searches << ",\"edge_batches\":" << result.edge_batches
               << ",\"rounds\":" << result.rounds << ",\"seconds\":" << t.total
               << ",\"times\":{\"sampling\":" << t.sampling << ",\"state_checks\":" << t.state_checks
               << ",\"knn\":" << t.knn << ",\"search\":" << t.search

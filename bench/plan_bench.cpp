@@ -37,15 +37,15 @@
 #include <utility>
 #include <vector>
 
-#include "gplanner/planner/checker_factory.h"
-#include "gplanner/planner/fcl_checker.h"
-#include "gplanner/planner/neighbor_finder.h"
+#include "gplanner/planner/checkers/checker_factory.h"
+#include "gplanner/planner/checkers/fcl_checker.h"
+#include "gplanner/planner/planning/neighbor_finder.h"
 #include "gplanner/planner/ompl/motion_validator.h"
 #include "gplanner/planner/ompl/state_space.h"
 #include "gplanner/planner/ompl/state_validity_checker.h"
-#include "gplanner/planner/roadmap_planner.h"
-#include "gplanner/planner/scene.h"
-#include "gplanner/planner/scene_metric.h"
+#include "gplanner/planner/planning/roadmap_planner.h"
+#include "gplanner/planner/scene/scene.h"
+#include "gplanner/planner/planning/scene_metric.h"
 
 namespace {
 

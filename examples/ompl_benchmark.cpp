@@ -18,12 +18,12 @@
 #include <iostream>
 #include <string>
 
-#include "gplanner/planner/checker_factory.h"
+#include "gplanner/planner/checkers/checker_factory.h"
 #include "gplanner/planner/ompl/motion_validator.h"
 #include "gplanner/planner/ompl/roadmap_planners.h"
 #include "gplanner/planner/ompl/state_space.h"
 #include "gplanner/planner/ompl/state_validity_checker.h"
-#include "gplanner/planner/scene.h"
+#include "gplanner/planner/scene/scene.h"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;

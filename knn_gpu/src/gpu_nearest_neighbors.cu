@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "gplanner/collision_gpu/detail/cuda_memory.cuh"
-#include "gplanner/collision_gpu/gpu_device.h"
+#include "gplanner/common/cuda_memory.cuh"
+#include "gplanner/common/gpu_device.h"
 #include "gplanner/knn_gpu/nearest_neighbors.h"
 #include "gpu_nearest_neighbors_device.cuh"
 #include "knn_checks.h"

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "gplanner/planner/fcl_checker.h"
-#include "gplanner/planner/scene.h"
+#include "gplanner/planner/checkers/fcl_checker.h"
+#include "gplanner/planner/scene/scene.h"
 #include "test_support.h"
 
 namespace gplanner {
@@ -264,7 +264,8 @@ TEST_F(GplanCheck, GpuSettingsWithoutTheGpuAreAUsageError) {
     const CommandResult run = check(arguments);
     EXPECT_EQ(run.exit_code, 2) << arguments << "\n" << run.output;
     EXPECT_NE(run.output.find("applies to the gpu backend only"), std::string::npos)
-        << arguments << "\n" << run.output;
+        << arguments << "\n"
+        << run.output;
   }
   // With the gpu backend (the cpu where there is none) they are taken.
   const CommandResult gpu = check("--n 10 --backend gpu --traversal basic --memory-cap-mb 1");

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "gplanner/collision_gpu/gpu_device.h"
-#include "gplanner/planner/scene.h"
+#include "gplanner/common/gpu_device.h"
+#include "gplanner/planner/scene/scene.h"
 #include "planner/scene_test_support.h"
 #include "test_support.h"
 

@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "gplanner/collision_gpu/bvh.h"
-#include "gplanner/planner/input_error.h"
-#include "gplanner/planner/mesh_loader.h"
-#include "gplanner/planner/scene.h"
-#include "gplanner/planner/urdf_loader.h"
+#include "gplanner/planner/scene/input_error.h"
+#include "gplanner/planner/scene/mesh_loader.h"
+#include "gplanner/planner/scene/scene.h"
+#include "gplanner/planner/scene/urdf_loader.h"
 
 namespace gplanner::fuzz {
 namespace {

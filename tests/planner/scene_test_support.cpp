@@ -5,8 +5,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "gplanner/planner/fcl_checker.h"
-#include "gplanner/planner/local_planner.h"
+#include "gplanner/planner/checkers/fcl_checker.h"
+#include "gplanner/planner/planning/local_planner.h"
 #include "test_support.h"
 
 namespace gplanner::testing {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "gplanner/planner/scene.h"
+#include "gplanner/planner/scene/scene.h"
 
 namespace gplanner::testing {
 

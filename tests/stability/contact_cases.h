@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "gplanner/planner/checker_factory.h"
-#include "gplanner/planner/scene.h"
-#include "gplanner/planner/scene_collision_model.h"
+#include "gplanner/planner/checkers/checker_factory.h"
+#include "gplanner/planner/scene/scene.h"
+#include "gplanner/planner/scene/scene_collision_model.h"
 #include "test_support.h"
 
 namespace gplanner::testing {

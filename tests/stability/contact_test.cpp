@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "contact_cases.h"
-#include "gplanner/collision_gpu/gpu_device.h"
+#include "gplanner/common/gpu_device.h"
 
 namespace gplanner {
 namespace {

@@ -23,10 +23,10 @@
 #include <string>
 #include <vector>
 
-#include "gplanner/collision_gpu/gpu_device.h"
-#include "gplanner/planner/checker_factory.h"
-#include "gplanner/planner/scene.h"
-#include "gplanner/planner/scene_collision_model.h"
+#include "gplanner/common/gpu_device.h"
+#include "gplanner/planner/checkers/checker_factory.h"
+#include "gplanner/planner/scene/scene.h"
+#include "gplanner/planner/scene/scene_collision_model.h"
 #include "test_support.h"
 
 namespace gplanner {

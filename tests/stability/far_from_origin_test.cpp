@@ -17,12 +17,12 @@
 #include <sstream>
 
 #include "contact_cases.h"
-#include "gplanner/collision_gpu/gpu_device.h"
-#include "gplanner/planner/fcl_checker.h"
-#include "gplanner/planner/neighbor_finder.h"
-#include "gplanner/planner/path_file.h"
-#include "gplanner/planner/roadmap_planner.h"
-#include "gplanner/planner/scene_metric.h"
+#include "gplanner/common/gpu_device.h"
+#include "gplanner/planner/checkers/fcl_checker.h"
+#include "gplanner/planner/output/path_file.h"
+#include "gplanner/planner/planning/neighbor_finder.h"
+#include "gplanner/planner/planning/roadmap_planner.h"
+#include "gplanner/planner/planning/scene_metric.h"
 
 namespace gplanner {
 namespace {

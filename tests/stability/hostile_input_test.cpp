@@ -25,15 +25,15 @@
 #include <string>
 #include <vector>
 
-#include "gplanner/collision_gpu/gpu_device.h"
-#include "gplanner/planner/checker_comparison.h"
-#include "gplanner/planner/checker_factory.h"
-#include "gplanner/planner/fcl_checker.h"
-#include "gplanner/planner/gpu_checker.h"
-#include "gplanner/planner/input_error.h"
-#include "gplanner/planner/local_planner.h"
-#include "gplanner/planner/scene.h"
-#include "gplanner/planner/scene_collision_model.h"
+#include "gplanner/common/gpu_device.h"
+#include "gplanner/planner/checkers/checker_comparison.h"
+#include "gplanner/planner/checkers/checker_factory.h"
+#include "gplanner/planner/checkers/fcl_checker.h"
+#include "gplanner/planner/checkers/gpu_checker.h"
+#include "gplanner/planner/planning/local_planner.h"
+#include "gplanner/planner/scene/input_error.h"
+#include "gplanner/planner/scene/scene.h"
+#include "gplanner/planner/scene/scene_collision_model.h"
 #include "test_support.h"
 
 namespace gplanner {

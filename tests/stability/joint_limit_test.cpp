@@ -20,14 +20,14 @@
 #include <string>
 #include <vector>
 
-#include "gplanner/collision_gpu/gpu_device.h"
-#include "gplanner/planner/checker_comparison.h"
-#include "gplanner/planner/checker_factory.h"
-#include "gplanner/planner/fcl_checker.h"
+#include "gplanner/common/gpu_device.h"
+#include "gplanner/planner/checkers/checker_comparison.h"
+#include "gplanner/planner/checkers/checker_factory.h"
+#include "gplanner/planner/checkers/fcl_checker.h"
 #include "gplanner/planner/ompl/state_space.h"
 #include "gplanner/planner/ompl/state_validity_checker.h"
-#include "gplanner/planner/scene.h"
-#include "gplanner/planner/scene_collision_model.h"
+#include "gplanner/planner/scene/scene.h"
+#include "gplanner/planner/scene/scene_collision_model.h"
 #include "test_support.h"
 
 namespace gplanner {

@@ -10,9 +10,9 @@
 
 #include "gplanner/collision_gpu/detail/query.h"
 #include "gplanner/collision_gpu/model_view.h"
-#include "gplanner/planner/forward_kinematics.h"
-#include "gplanner/planner/scene.h"
-#include "gplanner/planner/scene_collision_model.h"
+#include "gplanner/planner/scene/forward_kinematics.h"
+#include "gplanner/planner/scene/scene.h"
+#include "gplanner/planner/scene/scene_collision_model.h"
 #include "test_support.h"
 
 namespace gplanner {

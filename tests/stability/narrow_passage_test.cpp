@@ -23,14 +23,14 @@
 #include <string>
 #include <vector>
 
-#include "gplanner/collision_gpu/gpu_device.h"
-#include "gplanner/planner/checker_factory.h"
-#include "gplanner/planner/configuration_space.h"
-#include "gplanner/planner/neighbor_finder.h"
-#include "gplanner/planner/roadmap_planner.h"
-#include "gplanner/planner/scene.h"
-#include "gplanner/planner/scene_collision_model.h"
-#include "gplanner/planner/scene_metric.h"
+#include "gplanner/common/gpu_device.h"
+#include "gplanner/planner/checkers/checker_factory.h"
+#include "gplanner/planner/planning/neighbor_finder.h"
+#include "gplanner/planner/planning/roadmap_planner.h"
+#include "gplanner/planner/planning/scene_metric.h"
+#include "gplanner/planner/scene/configuration_space.h"
+#include "gplanner/planner/scene/scene.h"
+#include "gplanner/planner/scene/scene_collision_model.h"
 #include "planner/scene_test_support.h"
 #include "test_support.h"
 

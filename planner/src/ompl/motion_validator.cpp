@@ -3,8 +3,8 @@
 #include <ompl/base/SpaceInformation.h>
 
 #include "gplanner/planner/ompl/state_space.h"
-#include "gplanner/planner/roadmap_planner.h"
-#include "gplanner/planner/scene.h"
+#include "gplanner/planner/planning/roadmap_planner.h"
+#include "gplanner/planner/scene/scene.h"
 
 namespace gplanner::ompl_adapters {
 

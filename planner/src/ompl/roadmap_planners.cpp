@@ -8,8 +8,8 @@
 #include <string>
 
 #include "gplanner/planner/ompl/state_space.h"
-#include "gplanner/planner/scene.h"
-#include "gplanner/planner/scene_metric.h"
+#include "gplanner/planner/planning/scene_metric.h"
+#include "gplanner/planner/scene/scene.h"
 
 namespace gplanner::ompl_adapters {
 

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "gplanner/planner/scene.h"
+#include "gplanner/planner/scene/scene.h"
 
 namespace gplanner::ompl_adapters {
 namespace {

@@ -3,7 +3,7 @@
 #include <ompl/base/SpaceInformation.h>
 
 #include "gplanner/planner/ompl/state_space.h"
-#include "gplanner/planner/scene.h"
+#include "gplanner/planner/scene/scene.h"
 
 namespace gplanner::ompl_adapters {
 

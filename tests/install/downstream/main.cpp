@@ -1,11 +1,11 @@
 // Plans a scene with OMPL's RRTConnect on gplanner's checker and with gplanner's lazy
 // PRM, through the installed headers and library only.
-#include <gplanner/planner/checker_factory.h>
+#include <gplanner/planner/checkers/checker_factory.h>
 #include <gplanner/planner/ompl/motion_validator.h>
 #include <gplanner/planner/ompl/roadmap_planners.h>
 #include <gplanner/planner/ompl/state_space.h>
 #include <gplanner/planner/ompl/state_validity_checker.h>
-#include <gplanner/planner/scene.h>
+#include <gplanner/planner/scene/scene.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>

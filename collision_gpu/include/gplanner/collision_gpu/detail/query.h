@@ -1,8 +1,9 @@
 #pragma once
-// One collision query on host or device: forward kinematics of a configuration, the
-// bounding-sphere broad phase, and the BVTT traversal of each surviving body pair with
-// a private stack (the `basic` traversal, and the CPU backend). The other traversals
-// reuse the same pieces: poses, box tests and leaf tests.
+// One collision query on host or device, in the pieces every traversal shares: forward
+// kinematics of a configuration, the checked bodies and their bounding-sphere broad
+// phase, the box and leaf tests, and the rule that splits a node pair. query_collides
+// puts them together with a private stack per query (the `basic` traversal, and the CPU
+// backend); the other traversals schedule the same pieces differently (src/traversals/).
 
 #include "gplanner/collision_gpu/geometry/obb.h"
 #include "gplanner/collision_gpu/geometry/triangle_distance.h"
@@ -132,7 +133,7 @@ GP_HD float box_size(const BvhNode& n) {
 }
 
 // Which node of an overlapping inner pair to descend into: A's unless it is a leaf or
-// B's box is the larger. Every traversal splits by this rule.
+// B's box is the larger.
 GP_HD bool splits_a(const BvhNode& na, const BvhNode& nb) {
   return !na.is_leaf() && (nb.is_leaf() || box_size(na) >= box_size(nb));
 }
@@ -141,32 +142,45 @@ struct NodePair {
   int a, b;
 };
 
+// The two child pairs of an overlapping inner node pair (ia, ib), in the order of the
+// split node's children; returns whether A's node was split. Every traversal splits by
+// this rule and differs only in the order it visits the two pairs.
+GP_HD bool split_node_pair(int ia, int ib, const BvhNode& na, const BvhNode& nb, NodePair* first,
+                           NodePair* second) {
+  if (splits_a(na, nb)) {
+    *first = {na.child, ib};
+    *second = {na.child + 1, ib};
+    return true;
+  }
+  *first = {ia, nb.child};
+  *second = {ia, nb.child + 1};
+  return false;
+}
+
 // Whether point c (in node n's frame) lies on the side of n's split plane that n's
 // second child holds.
 GP_HD bool nearer_second_child(const BvhNode& n, V3f c) {
   return n.axes[0] * c.x + n.axes[3] * c.y + n.axes[6] * c.z >= n.split;
 }
 
-// The two child pairs of an overlapping inner node pair (ia, ib): the larger box is
-// split, and the child on the same side of its split plane as the other box's centre
-// comes first, being the likelier to hold a collision, so that a query stops sooner.
-// The children themselves are not loaded: on the GPU that load was a second dependent
-// memory access in every step (measured on the H100 against ordering by the distance
-// to the children's centres: balanced up to 10 % faster, the humanoid within 2 %, basic
-// on the piano 12 % faster; the same verdicts, BV tests within 5 % for balanced). X_BA
-// is the inverse of X_AB, computed once per body pair by the caller.
+// split_node_pair in depth-first order: the child on the same side of the split node's
+// split plane as the other node's centre comes first, being the likelier to hold a
+// collision, so that a query stops sooner. The children themselves are not loaded: on
+// the GPU that load was a second dependent memory access in every step (measured on the
+// H100 against ordering by the distance to the children's centres: balanced up to 10 %
+// faster, the humanoid within 2 %, basic on the piano 12 % faster; the same verdicts, BV
+// tests within 5 % for balanced). X_BA is the inverse of X_AB, computed once per body
+// pair by the caller.
 GP_HD void split_pair(const Xf& X_AB, const Xf& X_BA, int ia, int ib, const BvhNode& na,
                       const BvhNode& nb, NodePair* first, NodePair* second) {
-  if (splits_a(na, nb)) {
-    const int swap =
-        nearer_second_child(na, X_AB * V3f{nb.center[0], nb.center[1], nb.center[2]}) ? 1 : 0;
-    *first = {na.child + swap, ib};
-    *second = {na.child + 1 - swap, ib};
-  } else {
-    const int swap =
-        nearer_second_child(nb, X_BA * V3f{na.center[0], na.center[1], na.center[2]}) ? 1 : 0;
-    *first = {ia, nb.child + swap};
-    *second = {ia, nb.child + 1 - swap};
+  const bool swap =
+      split_node_pair(ia, ib, na, nb, first, second)
+          ? nearer_second_child(na, X_AB * V3f{nb.center[0], nb.center[1], nb.center[2]})
+          : nearer_second_child(nb, X_BA * V3f{na.center[0], na.center[1], na.center[2]});
+  if (swap) {
+    const NodePair later = *first;
+    *first = *second;
+    *second = later;
   }
 }
 
@@ -220,10 +234,6 @@ GP_HD bool sphere_may_touch_environment(const CollisionModelView& m, int l, V3f 
                                        node_box(m.nodes[m.environment.node_offset]), m.margin);
 }
 
-GP_HD bool link_may_touch_environment(const CollisionModelView& m, int l, const Xf& X_WL) {
-  return sphere_may_touch_environment(m, l, sphere_center_W(m, l, X_WL));
-}
-
 // Broad phase of a checked link pair: bounding sphere against bounding sphere (centres
 // ca_W and cb_W in the world).
 GP_HD bool spheres_may_touch(const CollisionModelView& m, int p, V3f ca_W, V3f cb_W) {
@@ -233,10 +243,36 @@ GP_HD bool spheres_may_touch(const CollisionModelView& m, int p, V3f ca_W, V3f c
   return geometry::dot(d, d) <= reach * reach;
 }
 
-GP_HD bool pair_may_touch(const CollisionModelView& m, int p, const Xf* X_WL) {
-  const int la = m.pair_a[p], lb = m.pair_b[p];
-  return spheres_may_touch(m, p, sphere_center_W(m, la, X_WL[la]),
-                           sphere_center_W(m, lb, X_WL[lb]));
+// The checked bodies of a query, numbered 0 .. body_count(m) - 1 and visited in this
+// order by every traversal: body b < m.link_count is link b against the environment,
+// body m.link_count + p the checked link pair p.
+GP_HD int body_count(const CollisionModelView& m) { return m.link_count + m.pair_count; }
+
+struct BodyRanges {
+  BodyRange a, b;
+};
+
+GP_HD BodyRanges body_ranges(const CollisionModelView& m, int body) {
+  if (body < m.link_count) return {m.environment, m.link_bodies[body]};
+  const int p = body - m.link_count;
+  return {m.link_bodies[m.pair_a[p]], m.link_bodies[m.pair_b[p]]};
+}
+
+// X_AB, body B in body A's frame; X_WL(l) gives link l's pose in the world.
+template <typename LinkPose>
+GP_HD Xf body_transform(const CollisionModelView& m, int body, LinkPose X_WL) {
+  if (body < m.link_count) return X_WL(body);
+  const int p = body - m.link_count;
+  return geometry::inverse(X_WL(m.pair_a[p])) * X_WL(m.pair_b[p]);
+}
+
+// The broad phase of a body; c_W(l) gives the centre of link l's bounding sphere in the
+// world.
+template <typename SphereCentre>
+GP_HD bool body_may_touch(const CollisionModelView& m, int body, SphereCentre c_W) {
+  if (body < m.link_count) return sphere_may_touch_environment(m, body, c_W(body));
+  const int p = body - m.link_count;
+  return spheres_may_touch(m, p, c_W(m.pair_a[p]), c_W(m.pair_b[p]));
 }
 
 // The whole query: true when configuration q (shape: [m.width]) collides with the
@@ -246,19 +282,12 @@ GP_HD bool query_collides(const CollisionModelView& m, const float* q, Xf* X_WL,
                           TraversalCounts* counts) {
   if (!is_configuration(m, q)) return true;
   link_poses(m, q, X_WL);
-  for (int l = 0; l < m.link_count; ++l) {
-    if (link_may_touch_environment(m, l, X_WL[l]) &&
-        bodies_collide(m, m.environment, m.link_bodies[l], X_WL[l], counts)) {
-      return true;
-    }
-  }
-  for (int p = 0; p < m.pair_count; ++p) {
-    if (!pair_may_touch(m, p, X_WL)) continue;
-    const int la = m.pair_a[p], lb = m.pair_b[p];
-    if (bodies_collide(m, m.link_bodies[la], m.link_bodies[lb],
-                       geometry::inverse(X_WL[la]) * X_WL[lb], counts)) {
-      return true;
-    }
+  const auto pose = [&](int l) { return X_WL[l]; };
+  const auto centre = [&](int l) { return sphere_center_W(m, l, X_WL[l]); };
+  for (int body = 0; body < body_count(m); ++body) {
+    if (!body_may_touch(m, body, centre)) continue;
+    const BodyRanges r = body_ranges(m, body);
+    if (bodies_collide(m, r.a, r.b, body_transform(m, body, pose), counts)) return true;
   }
   return false;
 }

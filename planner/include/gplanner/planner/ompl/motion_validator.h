@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
-#include "gplanner/planner/collision_checker.h"
-#include "gplanner/planner/local_planner.h"
+#include "gplanner/planner/checkers/collision_checker.h"
+#include "gplanner/planner/planning/local_planner.h"
 
 namespace gplanner {
 

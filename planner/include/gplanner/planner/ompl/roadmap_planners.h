@@ -11,8 +11,8 @@
 #include <memory>
 #include <vector>
 
-#include "gplanner/planner/collision_checker.h"
-#include "gplanner/planner/roadmap_planner.h"
+#include "gplanner/planner/checkers/collision_checker.h"
+#include "gplanner/planner/planning/roadmap_planner.h"
 
 namespace gplanner {
 

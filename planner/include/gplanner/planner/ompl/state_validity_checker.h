@@ -10,7 +10,7 @@
 #include <mutex>
 #include <vector>
 
-#include "gplanner/planner/collision_checker.h"
+#include "gplanner/planner/checkers/collision_checker.h"
 
 namespace gplanner {
 

@@ -1,0 +1,34 @@
+#pragma once
+// The batch collision checker on host threads: the same core the GPU runs (BVHs, box
+// and leaf tests, the split rule, float poses), one query per thread at a time, the
+// way the `basic` traversal does on the GPU. Plain C++.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+#include "gplanner/collision_gpu/collision_model.h"
+
+namespace gplanner {
+
+class CpuBatchChecker {
+ public:
+  // threads = 0: all hardware threads.
+  explicit CpuBatchChecker(const CollisionModel& model, int threads = 0);
+  ~CpuBatchChecker();
+  CpuBatchChecker(const CpuBatchChecker&) = delete;
+  CpuBatchChecker& operator=(const CpuBatchChecker&) = delete;
+
+  // configurations: shape [n, width]; verdicts: shape [n] (1: collision).
+  void check(const float* configurations, std::size_t n, std::uint8_t* verdicts);
+
+  // BV-pair and triangle tests done by the last check() (all threads together).
+  unsigned long long bv_tests() const;
+  unsigned long long triangle_tests() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gplanner

@@ -1,0 +1,589 @@
+#include "traversals/balanced.cuh"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace gplanner::traversals {
+namespace {
+
+__device__ void store_transform(const detail::Xf& X, float* out) {
+  for (int i = 0; i < 3; ++i) {
+    out[3 * i] = X.R.r[i].x;
+    out[3 * i + 1] = X.R.r[i].y;
+    out[3 * i + 2] = X.R.r[i].z;
+  }
+  out[9] = X.t.x;
+  out[10] = X.t.y;
+  out[11] = X.t.z;
+}
+
+// Kinematics and broad phase per query; every surviving body pair becomes a job with
+// one root task.
+__global__ void balanced_roots_kernel(CollisionModelView m, const float* d_q, int n, Job* d_jobs,
+                                      int job_capacity, Task* d_tasks, std::uint8_t* d_verdicts,
+                                      BalancedState* d_state) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const float* q = d_q + static_cast<std::size_t>(i) * m.width;
+  if (!detail::is_configuration(m, q)) {
+    d_verdicts[i] = 1;  // no configuration: colliding, and no jobs
+    return;
+  }
+  detail::Xf X_WL[detail::kMaxLinks];
+  detail::link_poses(m, q, X_WL);
+  auto emit = [&](const detail::BodyRanges& r, const detail::Xf& X_AB) {
+    const unsigned slot = atomicAdd(&d_state->jobs, 1u);
+    if (slot >= static_cast<unsigned>(job_capacity)) {
+      d_state->jobs_overflow = 1;
+      return;
+    }
+    Job job;
+    job.query = i;
+    job.a = r.a;
+    job.b = r.b;
+    store_transform(X_AB, job.X_AB);
+    d_jobs[slot] = job;
+    d_tasks[slot] = {static_cast<int>(slot), 0, 0};
+  };
+  const auto pose = [&](int l) { return X_WL[l]; };
+  const auto centre = [&](int l) { return detail::sphere_center_W(m, l, X_WL[l]); };
+  for (int body = 0; body < detail::body_count(m); ++body) {
+    if (detail::body_may_touch(m, body, centre))
+      emit(detail::body_ranges(m, body), detail::body_transform(m, body, pose));
+  }
+}
+
+// The same for articulated robots with many links and pairs, a warp per query: the
+// joint transforms and every bounding-sphere test spread over the lanes (one thread
+// would run them one after another: 130 us for a PR2 arm's 519 tests), only the
+// composition of the poses down the tree in one lane. Jobs are appended with one atomic
+// per warp and 32 tests. Used for batches of up to kWarpRootsUpTo queries: in larger
+// ones the GPU is full either way, and a query's jobs side by side (rather than
+// interleaved with other queries' as the thread-per-query kernel leaves them) made the
+// first rounds' lanes work on fewer queries at once and did up to 37 % more BV tests
+// (measured on the H100: the humanoid at 100,000 queries 10.5 ms with a thread per
+// query against 12.6 ms; at 3,000 and 10,000 queries a warp per query was faster or
+// tied on the humanoid and both PR2 scenes).
+constexpr int kRootWarps = 4;  // warps (queries) per block
+constexpr std::size_t kWarpRootsUpTo = 16384;
+
+__global__ void __launch_bounds__(32 * kRootWarps)
+    balanced_roots_warp_kernel(CollisionModelView m, const float* d_q, int n, Job* d_jobs,
+                               int job_capacity, Task* d_tasks, std::uint8_t* d_verdicts,
+                               BalancedState* d_state) {
+  __shared__ float s_poses[kRootWarps][detail::kMaxLinks][12];  // X_PL, then X_WL
+  __shared__ float4 s_spheres[kRootWarps][detail::kMaxLinks];   // centre in the world
+  const int warp = threadIdx.x / 32;
+  const unsigned lane = threadIdx.x & 31;
+  const int i = blockIdx.x * kRootWarps + warp;
+  if (i >= n) return;  // the whole warp
+  const float* q = d_q + static_cast<std::size_t>(i) * m.width;
+  if (!detail::is_configuration(m, q)) {
+    if (lane == 0) d_verdicts[i] = 1;  // no configuration: colliding, and no jobs
+    return;
+  }
+  float(*poses)[12] = s_poses[warp];
+  for (int l = static_cast<int>(lane); l < m.link_count; l += 32)
+    store_transform(l == 0 ? detail::base_pose(m, q) : detail::joint_transform(m, l, q), poses[l]);
+  __syncwarp();
+  if (lane == 0) {
+    for (int l = 1; l < m.link_count; ++l) {
+      store_transform(
+          detail::load_transform(poses[m.links[l].parent]) * detail::load_transform(poses[l]),
+          poses[l]);
+    }
+  }
+  __syncwarp();
+  for (int l = static_cast<int>(lane); l < m.link_count; l += 32) {
+    const detail::V3f c = detail::sphere_center_W(m, l, detail::load_transform(poses[l]));
+    s_spheres[warp][l] = make_float4(c.x, c.y, c.z, 0.0f);
+  }
+  __syncwarp();
+  const auto centre = [&](int l) {
+    const float4 c = s_spheres[warp][l];
+    return detail::V3f{c.x, c.y, c.z};
+  };
+  const auto pose = [&](int l) { return detail::load_transform(poses[l]); };
+  const int bodies = detail::body_count(m);
+  for (int start = 0; start < bodies; start += 32) {
+    const int b = start + static_cast<int>(lane);
+    const bool touch = b < bodies && detail::body_may_touch(m, b, centre);
+    const unsigned touching = __ballot_sync(kFullMask, touch);
+    if (touching == 0) continue;
+    unsigned base = 0;
+    const int leader = __ffs(touching) - 1;
+    if (lane == static_cast<unsigned>(leader))
+      base = atomicAdd(&d_state->jobs, static_cast<unsigned>(__popc(touching)));
+    base = __shfl_sync(kFullMask, base, leader);
+    if (!touch) continue;
+    const unsigned slot = base + __popc(touching & ((1u << lane) - 1u));
+    if (slot >= static_cast<unsigned>(job_capacity)) {
+      d_state->jobs_overflow = 1;
+      continue;
+    }
+    Job job;
+    job.query = i;
+    const detail::BodyRanges r = detail::body_ranges(m, b);
+    job.a = r.a;
+    job.b = r.b;
+    store_transform(detail::body_transform(m, b, pose), job.X_AB);
+    d_jobs[slot] = job;
+    d_tasks[slot] = {static_cast<int>(slot), 0, 0};
+  }
+}
+
+// Small batches: a warp per job, taken in turn by the resident warps, its node pairs
+// on a stack in shared memory and tested up to 32 at a time (the top of the stack:
+// depth first across steps, breadth first within one), triangle tests in the same
+// kernel. More BV tests than the task rounds make (the early exit comes later), but a
+// whole batch in one launch: when the GPU has room to spare, a call's time is its longest
+// chain of dependent tests, and each round of tasks adds a launch to that chain.
+//
+// Stack bound: node pairs are pushed in order of depth, so all pairs of one depth lie
+// above those of the depth before; a step that pops a pair of depth t - 1 pops every
+// pair of depth t with it, and pushes at most 64 of depth t. At most 64 pairs per depth,
+// 64 * (traversal_depth + 1) in all: stack_capacity.
+constexpr int kPairWarps = 4;  // warps per block at most
+
+//
+// kFinish: the same for what a traversal's rounds left in a short queue (BalancedState::
+// finish), a warp per task from its node pair, instead of more rounds of a few tasks each,
+// whose cost is their launches and dependent steps whatever their size.
+template <bool kFinish>
+__global__ void __launch_bounds__(32 * kPairWarps)
+    balanced_warp_per_pair_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_tasks,
+                                  int stack_capacity, std::uint8_t* d_collided,
+                                  BalancedState* d_state, DeviceTestCounts* d_counts) {
+  extern __shared__ int2 s_stacks[];
+  if (d_state->jobs_overflow) return;  // the host runs the chunk again, smaller
+  if (kFinish && !d_state->finish) return;
+  const unsigned jobs = kFinish ? d_state->top : d_state->jobs;
+  const unsigned lane = threadIdx.x & 31;
+  int2* stack = s_stacks + static_cast<std::size_t>(threadIdx.x / 32) * stack_capacity;
+  volatile std::uint8_t* collided_flags = d_collided;
+  detail::TraversalCounts counts;
+  while (true) {
+    unsigned j = 0;
+    if (lane == 0) j = atomicAdd(&d_state->next_job, 1u);
+    j = __shfl_sync(kFullMask, j, 0);
+    if (j >= jobs) break;
+    const Task task = kFinish ? d_tasks[j] : Task{static_cast<int>(j), 0, 0};
+    const Job& job = d_jobs[task.job];
+    const int query = job.query;
+    if (__shfl_sync(kFullMask, lane == 0 ? collided_flags[query] : 0, 0)) continue;
+    const BodyRange body_a = job.a, body_b = job.b;
+    const detail::Xf X_AB = detail::load_transform(job.X_AB);
+    if (lane == 0) stack[0] = make_int2(task.a, task.b);
+    __syncwarp();
+    int top = 1;
+    bool collided = false;
+    for (int step = 1; top > 0; ++step) {
+      const int take = min(top, 32);
+      const bool active = static_cast<int>(lane) < take;
+      int2 pair = make_int2(0, 0);
+      if (active) pair = stack[top - take + static_cast<int>(lane)];
+      __syncwarp();
+      top -= take;
+      bool hit = false, split = false;
+      detail::NodePair first{}, second{};
+      if (active) {
+        const BvhNode& na = m.nodes[body_a.node_offset + pair.x];
+        const BvhNode& nb = m.nodes[body_b.node_offset + pair.y];
+        ++counts.bv_tests;
+        if (detail::nodes_overlap(na, nb, X_AB, m.margin)) {
+          if (na.is_leaf() && nb.is_leaf()) {
+            ++counts.triangle_tests;
+            hit = detail::leaf_collides(m.triangles[body_a.triangle_offset + na.triangle()],
+                                        m.triangles[body_b.triangle_offset + nb.triangle()], X_AB,
+                                        m.threshold);
+          } else {
+            // The split without split_pair's order of the children: the next step tests
+            // them side by side anyway.
+            detail::split_node_pair(pair.x, pair.y, na, nb, &first, &second);
+            split = true;
+          }
+        }
+      }
+      if (__any_sync(kFullMask, hit)) {
+        collided = true;
+        break;
+      }
+      const unsigned splitting = __ballot_sync(kFullMask, split);
+      if (split) {
+        const int at = top + 2 * __popc(splitting & ((1u << lane) - 1u));
+        stack[at] = make_int2(second.a, second.b);
+        stack[at + 1] = make_int2(first.a, first.b);
+      }
+      top += 2 * __popc(splitting);
+      __syncwarp();
+      // Another job of the query may have found a collision.
+      if ((step & 7) == 0 && __shfl_sync(kFullMask, lane == 0 ? collided_flags[query] : 0, 0))
+        break;
+    }
+    if (collided && lane == 0) collided_flags[query] = 1;
+  }
+  add_counts(counts, d_counts);
+}
+
+// Steps of depth-first traversal one task runs before it hands what is left of its
+// stack back to the queue: short enough that the work of one hard query spreads over
+// many threads in the next launch, long enough that a query finding a collision stops
+// its own search early.
+constexpr int kTaskSteps = 32;
+// Threads per block of the task kernel, with kStackEntries stack entries each in shared
+// memory (how many blocks an SM holds is set by the carve-out). Measured on the H100 at
+// 50,000 to 100,000 queries against 256 threads with stacks in local memory: 4 to 17 %
+// faster on every scene; 16-step tasks did more BV tests and were slower than either.
+constexpr int kTaskThreads = 128;
+// A task whose stack fills hands it back before its steps are used up. 24 entries
+// (25 KB a block) let six blocks share an SM's 164 KB of shared memory where the 33 that
+// 32 steps can reach let four; few stacks grow that deep. Measured on the H100 in one run,
+// two passes, against 33 entries: the humanoid 11 to 14 % faster, pr2_base_arm 10 to
+// 11 %, pr2_reach 4 to 6 %, the large piano 3 to 4 % slower, the rest within 3 %; 16
+// entries handed back so often that the traversals did 8 to 87 % more BV tests and were
+// slower everywhere.
+constexpr int kStackEntries = 24;
+// Once a round has fewer tasks than kTailTasks the GPU has room to spare, and tasks run
+// kTailSteps: the remaining hard queries spread over more threads sooner.
+constexpr unsigned kTailTasks = 65536;
+constexpr unsigned kTailSteps = 8;
+// After two rounds, a queue of at most kFinishTasks tasks is finished by one launch of
+// the small-batch kernel, a warp per task, instead of the rounds of a few tasks each
+// that remained (measured on an H200 against no finish, the same run: 50,000 to 100,000
+// queries 0 to 7 % faster on every scene, 300 to 4,000 queries 12 to 34 %).
+constexpr unsigned kFinishTasks = 4096;
+
+// Tasks fetched lane by lane: each lane runs up to kTaskSteps BV-pair tests depth-first
+// from its task's node pair and, as soon as its task ends (stack empty, steps used up, or
+// the query found colliding), takes the next task of the launch, so that the lanes of a
+// warp stay busy although their tasks end at very different steps. Overlapping leaf
+// pairs go to the leaf queue, tested by balanced_leaf_kernel (the double-precision
+// triangle test would otherwise stall the whole warp and, with its registers, cut the
+// threads that fit); the node pairs left on a stack become new tasks in d_children (one
+// atomic per warp and step at which some lane hands its stack back).
+__global__ void __launch_bounds__(kTaskThreads, 6)
+    balanced_task_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_queue,
+                         Task* d_children, Task* d_leaves, unsigned leaf_capacity,
+                         const std::uint8_t* d_collided, BalancedState* d_state,
+                         DeviceTestCounts* d_counts) {
+  const unsigned count = d_state->launch;
+  if (count == 0) return;  // the queue ran empty in an earlier round of this burst
+  const Task* d_tasks = d_queue + d_state->begin;
+  const unsigned lane = threadIdx.x & 31;
+  detail::TraversalCounts counts;
+  // Each step pops one pair and pushes at most two; a stack that reaches kStackEntries
+  // is handed back. The stacks live in shared memory, entry k of all threads side by
+  // side, so that a lane always meets the same bank whatever its depth: in local memory
+  // they missed the L1 and stalled the warps on L2 (Nsight Compute on the H100: 19
+  // cycles of long-scoreboard stall an instruction in the big rounds).
+  __shared__ int2 s_stacks[kStackEntries][kTaskThreads];
+  int2* stack = &s_stacks[0][threadIdx.x];
+  int top = 0, job_index = 0, query = 0;
+  unsigned steps = 0;
+  BodyRange body_a{}, body_b{};
+  detail::Xf X_AB{}, X_BA{};
+  const unsigned max_steps = d_state->steps;
+  const unsigned threads = gridDim.x * blockDim.x;
+  bool exhausted = false, first = true;
+  while (__any_sync(kFullMask, top > 0 || !exhausted)) {
+    // Lanes without a task take the next ones: the first by thread index, the later ones
+    // beyond all threads' first through one atomic per warp.
+    const bool fetch = top == 0 && !exhausted;
+    const unsigned fetching = __ballot_sync(kFullMask, fetch);
+    if (fetching) {
+      unsigned base = 0;
+      if (!first) {
+        const int leader = __ffs(fetching) - 1;
+        if (lane == static_cast<unsigned>(leader))
+          base = atomicAdd(&d_state->fetched, static_cast<unsigned>(__popc(fetching)));
+        base = __shfl_sync(kFullMask, base, leader);
+      }
+      if (fetch) {
+        const unsigned index = first ? blockIdx.x * blockDim.x + threadIdx.x
+                                     : threads + base + __popc(fetching & ((1u << lane) - 1u));
+        if (index >= count) {
+          exhausted = true;
+        } else {
+          const Task task = d_tasks[index];
+          const Job& job = d_jobs[task.job];
+          job_index = task.job;
+          query = job.query;
+          if (!d_collided[query]) {
+            body_a = job.a;
+            body_b = job.b;
+            X_AB = detail::load_transform(job.X_AB);
+            X_BA = geometry::inverse(X_AB);
+            stack[0] = make_int2(task.a, task.b);
+            top = 1;
+            steps = 0;
+          }
+        }
+      }
+      first = false;
+    }
+    bool hand_back = false;
+    if (top > 0) {
+      if ((steps & 7) == 7 && d_collided[query]) {
+        top = 0;  // a leaf test of this query found a collision
+      } else {
+        ++steps;
+        --top;
+        const int2 pair = stack[top * kTaskThreads];
+        const int ia = pair.x, ib = pair.y;
+        const BvhNode& na = m.nodes[body_a.node_offset + ia];
+        const BvhNode& nb = m.nodes[body_b.node_offset + ib];
+        ++counts.bv_tests;
+        if (detail::nodes_overlap(na, nb, X_AB, m.margin)) {
+          if (na.is_leaf() && nb.is_leaf()) {
+            const unsigned slot = atomicAdd(&d_state->leaves, 1u);
+            if (slot < leaf_capacity) {
+              d_leaves[slot] = {job_index, na.triangle(), nb.triangle()};
+            } else {
+              ++top;  // the leaf queue is full: keep the pair as a task for the next launch
+              hand_back = true;
+            }
+          } else {
+            detail::NodePair first, second;
+            detail::split_pair(X_AB, X_BA, ia, ib, na, nb, &first, &second);
+            stack[top * kTaskThreads] = make_int2(second.a, second.b);
+            stack[(top + 1) * kTaskThreads] = make_int2(first.a, first.b);
+            top += 2;
+          }
+        }
+        if (top > 0 && (steps == max_steps || top >= kStackEntries)) hand_back = true;
+      }
+    }
+    // Warp-aggregated append of the stacks handed back.
+    const int leaving = hand_back ? top : 0;
+    if (__any_sync(kFullMask, leaving > 0)) {
+      int offset = leaving;
+      for (int d = 1; d < 32; d *= 2) {
+        const int other = __shfl_up_sync(kFullMask, offset, d);
+        if (lane >= static_cast<unsigned>(d)) offset += other;
+      }
+      const int total = __shfl_sync(kFullMask, offset, 31);
+      unsigned base = 0;
+      if (lane == 31) base = atomicAdd(&d_state->tasks, static_cast<unsigned>(total));
+      base = __shfl_sync(kFullMask, base, 31);
+      const unsigned at = base + offset - leaving;
+      for (int k = 0; k < leaving; ++k) {
+        const int2 pair = stack[k * kTaskThreads];
+        d_children[at + k] = {job_index, pair.x, pair.y};
+      }
+    }
+    if (hand_back) top = 0;
+  }
+  add_counts(counts, d_counts);
+}
+
+// The leaf pairs of a round, a thread each (grid-stride): the triangle test, marking the
+// query when it collides. The same kernel moves the round's children into the queue
+// where its tasks were taken from.
+__global__ void __launch_bounds__(256, 2)
+    balanced_leaf_kernel(CollisionModelView m, const Job* d_jobs, const Task* d_leaves,
+                         unsigned leaf_capacity, const Task* d_children, Task* d_queue,
+                         std::uint8_t* d_collided, BalancedState* d_state,
+                         DeviceTestCounts* d_counts) {
+  const unsigned leaves = min(d_state->leaves, leaf_capacity);
+  const unsigned children = d_state->tasks;
+  Task* d_to = d_queue + d_state->begin;
+  const unsigned stride = gridDim.x * blockDim.x;
+  for (unsigned t = blockIdx.x * blockDim.x + threadIdx.x; t < children; t += stride)
+    d_to[t] = d_children[t];
+  if (leaves == 0) return;
+  detail::TraversalCounts counts;
+  for (unsigned t = blockIdx.x * blockDim.x + threadIdx.x; t < leaves; t += stride) {
+    const Task leaf = d_leaves[t];
+    const Job& job = d_jobs[leaf.job];
+    if (!d_collided[job.query]) {
+      ++counts.triangle_tests;
+      if (detail::leaf_collides(m.triangles[job.a.triangle_offset + leaf.a],
+                                m.triangles[job.b.triangle_offset + leaf.b],
+                                detail::load_transform(job.X_AB), m.threshold)) {
+        d_collided[job.query] = 1;
+      }
+    }
+  }
+  add_counts(counts, d_counts);
+}
+
+// Ends a round: the children join the queue, and the next round takes the newest tasks
+// (depth-first across rounds, which keeps the queue short), as many as leave room for
+// their children.
+__device__ void advance_queue(BalancedState& c, unsigned task_capacity, unsigned max_launch) {
+  const unsigned top = c.begin + c.tasks;
+  // A task leaves at most kStackEntries pairs in place of itself.
+  const unsigned room = (task_capacity - top) / kStackEntries;
+  const unsigned launch = min(top, min(room, max_launch));
+  if (top > 0 && launch == 0) c.queue_full = 1;
+  // A short queue goes to the finish kernel whole; the rounds' kernels then do nothing.
+  c.finish = top > 0 && top <= kFinishTasks && c.rounds >= 2 ? 1 : 0;
+  c.top = top;
+  c.launch = c.finish ? 0 : launch;
+  c.begin = top - c.launch;
+  c.tasks = 0;
+  c.leaves = 0;
+  c.fetched = 0;
+  c.steps = launch < kTailTasks ? kTailSteps : kTaskSteps;
+  if (c.launch > 0) {
+    if (c.rounds < kTracedRounds) c.round_tasks[c.rounds] = c.launch;
+    ++c.rounds;
+  }
+}
+
+__global__ void balanced_advance_kernel(BalancedState* d_state, unsigned task_capacity,
+                                        unsigned max_launch) {
+  advance_queue(*d_state, task_capacity, max_launch);
+}
+
+// Starts a chunk's traversal after the roots kernel: the jobs' root tasks fill the
+// queue, as if a round at 0 had emitted them. When the jobs overflowed their buffer no
+// round runs (the host sees the flag and runs the chunk again, smaller).
+__global__ void balanced_start_kernel(BalancedState* d_state, unsigned task_capacity,
+                                      unsigned max_launch) {
+  BalancedState& c = *d_state;
+  c.begin = 0;
+  c.tasks = c.jobs_overflow ? 0 : c.jobs;
+  c.rounds = 0;
+  c.queue_full = 0;
+  advance_queue(c, task_capacity, max_launch);
+}
+}  // namespace
+
+BalancedTraversal::BalancedTraversal(const FlatCollisionModel& host,
+                                     const cudaDeviceProp& properties) {
+  int blocks_per_sm = 0;
+  // The shared-memory share of the SM's 256 KB of L1 and shared memory that the task
+  // kernel asks for, in percent of the largest (the driver rounds it to a size the SM
+  // has): measured on the H100, with 33-entry stacks, at 100 (28 KB of L1 left for the
+  // nodes), 80, 60 and 40: 60 and 80 were fastest, 60 on more scenes; 100 and 40 were
+  // 11 to 51 % slower than 60. With 24-entry stacks, 60 (164 KB) holds six blocks; 50
+  // (five blocks, more L1) was 4 to 6 % faster on the two detailed pianos and up to 7 %
+  // slower on the humanoid.
+  check_cuda(cudaFuncSetAttribute(balanced_task_kernel,
+                                  cudaFuncAttributePreferredSharedMemoryCarveout, 60),
+             "carve-out");
+  check_cuda(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm, balanced_task_kernel,
+                                                           kTaskThreads, 0),
+             "occupancy");
+  resident_task_blocks_ = std::max(1, blocks_per_sm) * properties.multiProcessorCount;
+  check_cuda(
+      cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm, balanced_leaf_kernel, 256, 0),
+      "occupancy");
+  resident_leaf_blocks_ = std::max(1, blocks_per_sm) * properties.multiProcessorCount;
+
+  bodies_ = static_cast<std::size_t>(detail::body_count(host.view()));
+  many_bodies_ = bodies_ > 32;
+  pair_stack_capacity_ = 64 * (host.traversal_depth + 1);
+  const std::size_t stack_bytes = pair_stack_capacity_ * sizeof(int2);  // at most 66 KB
+  pair_warps_ = static_cast<int>(
+      std::clamp<std::size_t>(properties.sharedMemPerBlockOptin / stack_bytes, 1, kPairWarps));
+  pair_shared_bytes_ = pair_warps_ * stack_bytes;
+  for (auto* kernel : {balanced_warp_per_pair_kernel<false>, balanced_warp_per_pair_kernel<true>})
+    check_cuda(cudaFuncSetAttribute(kernel, cudaFuncAttributeMaxDynamicSharedMemorySize,
+                                    static_cast<int>(pair_shared_bytes_)),
+               "shared memory of the small-batch kernel");
+  check_cuda(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks_per_sm,
+                                                           balanced_warp_per_pair_kernel<false>,
+                                                           32 * pair_warps_, pair_shared_bytes_),
+             "occupancy");
+  pair_blocks_ = std::max(1, blocks_per_sm) * properties.multiProcessorCount;
+  state_.reserve(1);
+}
+
+void BalancedTraversal::reserve(std::size_t chunk, std::size_t memory_cap) {
+  // Shares of the memory cap, each also bounded outright (16M jobs, 128M queued tasks:
+  // far above what the shipped scenes reach) so that a large free memory is not claimed
+  // for nothing. A chunk whose jobs overflow is rerun at half the size.
+  job_capacity_ =
+      std::min({chunk * bodies_, static_cast<std::size_t>(0.3 * memory_cap) / sizeof(Job),
+                std::size_t(1) << 24});
+  task_capacity_ = std::max<std::size_t>(
+      2 * job_capacity_ + 4 * kStackEntries,
+      std::min(static_cast<std::size_t>(0.25 * memory_cap) / sizeof(Task), std::size_t(1) << 27));
+  jobs_.reserve(job_capacity_);
+  tasks_.reserve(task_capacity_);
+  children_capacity_ = std::min<std::size_t>(task_capacity_, std::size_t(kStackEntries) << 20);
+  children_.reserve(children_capacity_);
+  leaf_capacity_ = std::max<std::size_t>(
+      1024, std::min<std::size_t>(std::size_t(1) << 22,
+                                  static_cast<std::size_t>(0.05 * memory_cap) / sizeof(Task)));
+  leaves_.reserve(leaf_capacity_);
+}
+
+BalancedState BalancedTraversal::read_state() {
+  BalancedState c;
+  check_cuda(cudaMemcpy(&c, state_.get(), sizeof(c), cudaMemcpyDeviceToHost), "read counters");
+  return c;
+}
+
+bool BalancedTraversal::run(const CollisionModelView& m, const float* d_q, int n,
+                            std::uint8_t* d_verdicts, DeviceTestCounts* d_counts,
+                            std::size_t warp_per_pair_up_to, GpuCheckStats* stats) {
+  check_cuda(cudaMemsetAsync(state_.get(), 0, sizeof(BalancedState)), "memset");
+  check_cuda(cudaMemset(d_verdicts, 0, n), "memset");
+  const bool warp_roots = many_bodies_ && static_cast<std::size_t>(n) <= kWarpRootsUpTo;
+  if (warp_roots) {
+    balanced_roots_warp_kernel<<<blocks_for(n, kRootWarps), 32 * kRootWarps>>>(
+        m, d_q, n, jobs_.get(), static_cast<int>(job_capacity_), tasks_.get(), d_verdicts,
+        state_.get());
+  } else {
+    balanced_roots_kernel<<<blocks_for(n, 128), 128>>>(m, d_q, n, jobs_.get(),
+                                                       static_cast<int>(job_capacity_),
+                                                       tasks_.get(), d_verdicts, state_.get());
+  }
+  check_cuda(cudaGetLastError(), "balanced roots kernel");
+  stats->root_lanes = warp_roots ? 32 : 1;
+  const std::size_t small_batch = warp_per_pair_up_to != GpuCheckerOptions::kAuto
+                                      ? warp_per_pair_up_to
+                                  : many_bodies_ ? 1024
+                                                 : 10;
+  if (static_cast<std::size_t>(n) <= small_batch) {
+    balanced_warp_per_pair_kernel<false><<<pair_blocks_, 32 * pair_warps_, pair_shared_bytes_>>>(
+        m, jobs_.get(), nullptr, pair_stack_capacity_, d_verdicts, state_.get(), d_counts);
+    check_cuda(cudaGetLastError(), "balanced small-batch kernel");
+    stats->warp_per_pair = true;
+    const BalancedState c = read_state();
+    if (c.jobs_overflow) return false;
+    stats->jobs += c.jobs;
+    return true;
+  }
+  // Each task may leave up to kStackEntries node pairs behind.
+  const unsigned max_launch =
+      static_cast<unsigned>(std::min<std::size_t>(1u << 20, children_capacity_ / kStackEntries));
+  const unsigned capacity = static_cast<unsigned>(std::min<std::size_t>(task_capacity_, ~0u));
+  balanced_start_kernel<<<1, 1>>>(state_.get(), capacity, max_launch);
+  BalancedState c;
+  // Rounds run in bursts without the host; the queue is read between bursts, and a
+  // round after the queue ran empty costs three near-empty launches.
+  const int burst = 4;
+  while (true) {
+    for (int r = 0; r < burst; ++r) {
+      balanced_task_kernel<<<resident_task_blocks_, kTaskThreads>>>(
+          m, jobs_.get(), tasks_.get(), children_.get(), leaves_.get(),
+          static_cast<unsigned>(leaf_capacity_), d_verdicts, state_.get(), d_counts);
+      balanced_leaf_kernel<<<resident_leaf_blocks_, 256>>>(
+          m, jobs_.get(), leaves_.get(), static_cast<unsigned>(leaf_capacity_), children_.get(),
+          tasks_.get(), d_verdicts, state_.get(), d_counts);
+      balanced_advance_kernel<<<1, 1>>>(state_.get(), capacity, max_launch);
+    }
+    // Nothing to do unless a round left a short queue (then the rounds above it did
+    // nothing either).
+    balanced_warp_per_pair_kernel<true><<<pair_blocks_, 32 * pair_warps_, pair_shared_bytes_>>>(
+        m, jobs_.get(), tasks_.get(), pair_stack_capacity_, d_verdicts, state_.get(), d_counts);
+    check_cuda(cudaGetLastError(), "balanced traversal kernels");
+    c = read_state();
+    if (c.jobs_overflow) return false;
+    if (c.queue_full)
+      throw std::runtime_error("balanced traversal: task queue full; lower the batch size");
+    if (c.finish || c.top == 0) break;
+  }
+  stats->rounds += c.rounds;
+  stats->jobs += c.jobs;
+  if (c.finish) stats->finished_tasks += c.top;
+  for (unsigned r = 0; r < std::min<unsigned>(c.rounds, kTracedRounds); ++r)
+    stats->round_tasks.push_back(c.round_tasks[r]);
+  return true;
+}
+
+}  // namespace gplanner::traversals

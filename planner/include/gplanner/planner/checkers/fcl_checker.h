@@ -1,0 +1,35 @@
+#pragma once
+// The baseline and ground truth: FCL (OBBRSS, double) on all CPU cores. Robot links
+// against the environment, and for articulated robots the checked link pairs against
+// each other, with an AABB test first as FCL's broad phase does.
+
+#include <memory>
+
+#include "gplanner/planner/checkers/collision_checker.h"
+#include "gplanner/planner/scene/scene.h"
+
+namespace gplanner {
+
+class FclChecker : public CollisionChecker {
+ public:
+  // Builds one BVH per link with collision geometry and one for all obstacles; keeps
+  // a reference to `scene`, which must outlive the checker. threads = 0: all cores.
+  explicit FclChecker(const Scene& scene, int threads = 0);
+  ~FclChecker() override;
+
+  std::string backend() const override { return "fcl"; }
+  void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override;
+
+  // Smallest distance (metres) from the robot to the environment and between checked
+  // link pairs; 0 when the configuration collides. shape: configurations [n, width],
+  // distances [n].
+  void distance(const float* configurations, std::size_t n, double* distances);
+
+  int threads() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gplanner

@@ -1,0 +1,30 @@
+#pragma once
+// Batched path shortcutting: each round proposes many shortcuts between waypoints of
+// the path (all of them when few), checks them in one batch with `local`, and keeps the
+// shortest path through the valid ones (a shortest path over the waypoints in order),
+// whose shortcuts are checked again with `fine` (dropping those that fail, until the
+// path holds only shortcuts both passed); then puts a midpoint into every segment so
+// that the next round can cut corners closer. Where the checker's calls cost more than
+// samples (the GPU), the next round's shortcuts are checked in the same call as this
+// round's fine check (dropped if that fails: the same path, fewer calls), and a round
+// checks every shortcut with `fine` alone, in one call, where that adds fewer samples
+// than a call costs. A path valid at fine's resolution stays so. Stops, with the path as
+// it is, when `local`'s stop condition says so.
+
+#include <random>
+#include <vector>
+
+#include "gplanner/planner/planning/local_planner.h"
+
+namespace gplanner {
+
+struct ConfigurationSpace;
+
+// path: shape [waypoints, width], start and goal kept; returns the metric length after.
+double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, LocalPlanner* fine,
+                     int rounds, int candidates, std::mt19937_64* rng, std::vector<float>* path);
+
+// Metric length of a path (shape [waypoints, width]).
+double path_length(const ConfigurationMetric& metric, const std::vector<float>& path, int width);
+
+}  // namespace gplanner

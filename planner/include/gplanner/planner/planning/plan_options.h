@@ -1,0 +1,48 @@
+#pragma once
+// How a roadmap planner is asked to plan: seed, time limit, roadmap size, lazy batches,
+// shortcutting, edge resolution, sampling, and the callbacks it reports to.
+
+#include <cstddef>
+#include <functional>
+
+#include "gplanner/planner/planning/local_planner.h"
+#include "gplanner/planner/planning/milestone_sampler.h"
+
+namespace gplanner {
+
+// Reported after each stage of a round; planners call it from the planning thread.
+struct PlanProgress {
+  const char* stage;  // "milestones", "neighbours", "edges", "search", "shortcut"
+  std::size_t round;
+  std::size_t milestones;
+  std::size_t edges;
+  std::size_t edges_valid;
+  double elapsed_s;
+};
+
+struct PlanOptions {
+  unsigned long long seed = 1;
+  double time_limit_s = 30;
+  std::size_t milestones = 2000;  // free ones the first round adds; later rounds double the roadmap
+  int neighbors = 15;             // k
+  // Lazy PRM: one batch checks the unknown edges of the shortest path and of up to this
+  // many - 1 next shortest ones (1: the shortest path's only).
+  int lazy_batch_paths = 64;
+  int shortcut_rounds = 6;
+  int shortcut_candidates = 256;
+  // The found path is re-checked at the edge resolution divided by this (1: not at all)
+  // before it is returned; a path that fails sends the search back to the roadmap.
+  int final_check_refinement = 10;
+  LocalPlannerOptions local;
+  SamplerOptions sampler;  // how milestones are drawn
+  std::function<void(const PlanProgress&)> progress;
+  // Polled between stages: true stops planning (OMPL's termination conditions).
+  std::function<bool()> should_stop;
+};
+
+struct Scene;
+// The options a scene's planner settings give (seed, time limit, roadmap, shortcut,
+// edge resolution, sampler).
+PlanOptions plan_options(const Scene& scene);
+
+}  // namespace gplanner

@@ -1,0 +1,101 @@
+#pragma once
+// PRM and lazy PRM over one roadmap, as G-Planner runs them on the GPU: milestones are
+// sampled and checked in one batch per round, joined to their k nearest neighbours
+// (GPU k-NN), and then
+// - PRM (multi-query) checks every new edge in one batch and searches the valid ones;
+// - lazy PRM (single query) searches all edges not known invalid, checks every
+//   unchecked edge of the found path, and of the next shortest paths found with those
+//   edges set aside, in one batch, drops the invalid ones and searches again, until a
+//   path is valid or none is left (then the roadmap grows).
+// The found path is shortcut with batched checks and re-checked at a finer resolution.
+// Seeded and deterministic for a given seed (with a deterministic checker).
+
+#include <chrono>
+#include <memory>
+#include <random>
+#include <string>
+#include <unordered_set>
+
+#include "gplanner/planner/checkers/collision_checker.h"
+#include "gplanner/planner/planning/goal_distances.h"
+#include "gplanner/planner/planning/graph_search.h"
+#include "gplanner/planner/planning/local_planner.h"
+#include "gplanner/planner/planning/milestone_sampler.h"
+#include "gplanner/planner/planning/neighbor_finder.h"
+#include "gplanner/planner/planning/plan_options.h"
+#include "gplanner/planner/planning/plan_result.h"
+#include "gplanner/planner/planning/roadmap.h"
+
+namespace gplanner {
+
+struct Scene;
+
+enum class RoadmapStrategy { kPrm, kLazyPrm };
+
+// "prm" / "lazyprm"; parse returns false for other names.
+const char* strategy_name(RoadmapStrategy strategy);
+bool parse_strategy(const std::string& name, RoadmapStrategy* strategy);
+
+class RoadmapPlanner {
+ public:
+  // scene, checker and neighbors must outlive the planner.
+  RoadmapPlanner(const Scene& scene, CollisionChecker* checker, NeighborFinder* neighbors,
+                 RoadmapStrategy strategy, const PlanOptions& options);
+
+  // Plans from start to goal (each shape [width], free: callers check them first),
+  // growing the roadmap until a path is found, the time limit passes, or should_stop
+  // says so.
+  PlanResult solve(const float* start, const float* goal);
+
+  const Roadmap& roadmap() const { return roadmap_; }
+  // Starts from a saved roadmap (its milestones and edge states are kept).
+  void set_roadmap(Roadmap roadmap) {
+    roadmap_ = std::move(roadmap);
+    connected_ = 0;
+    certified_.clear();
+  }
+  const PlanOptions& options() const { return options_; }
+  // New settings for the next solve() (the roadmap stays; the local planner keeps the
+  // resolution it was made with).
+  void set_options(const PlanOptions& options) { options_ = options; }
+  RoadmapStrategy strategy() const { return strategy_; }
+
+ private:
+  std::size_t add_milestones(std::size_t count, PlanResult* result);
+  std::size_t connect(PlanResult* result);
+  void check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result);
+  // The motions along `edges` checked by `planner` (invalid: one entry per edge); false
+  // when its stop condition ended the check part way.
+  bool check_edge_motions(LocalPlanner* planner, const std::vector<std::uint32_t>& edges,
+                          std::vector<std::uint8_t>* invalid) const;
+  // The path's edges whose state is unknown.
+  std::vector<std::uint32_t> unknown_edges(const GraphPath& path) const;
+  // Lazy PRM: adds to `batch` (the shortest path's unknown edges) those of the next
+  // shortest paths, up to options_.lazy_batch_paths paths in all; shortest_vertices:
+  // the shortest path's vertex count.
+  void add_next_paths(const GoalDistances& to_goal, std::uint32_t s, std::uint32_t g,
+                      std::size_t shortest_vertices, std::vector<std::uint32_t>* batch,
+                      PlanResult* result);
+  bool out_of_time(PlanResult* result) const;
+  void report(const char* stage, const PlanResult& result) const;
+  double elapsed() const;
+
+  const Scene& scene_;
+  CollisionChecker* checker_;
+  NeighborFinder* neighbors_;
+  RoadmapStrategy strategy_;
+  PlanOptions options_;
+  LocalPlanner local_;
+  MilestoneSampler sampler_;
+  Roadmap roadmap_;
+  std::mt19937_64 rng_;
+  // Sampling attempts made and milestones found so far: their ratio sizes batches.
+  std::size_t attempts_ = 0, attempts_found_ = 0;
+  // Milestones [0, connected_) have been joined to their neighbours.
+  std::size_t connected_ = 0;
+  // Edges that passed the fine re-check (in the roadmap as it is now).
+  std::unordered_set<std::uint32_t> certified_;
+  std::chrono::steady_clock::time_point started_;
+};
+
+}  // namespace gplanner

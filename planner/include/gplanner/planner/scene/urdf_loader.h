@@ -1,0 +1,38 @@
+#pragma once
+// Robots from URDF (through urdfdom) and SRDF files, with their collision meshes.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gplanner/planner/scene/input_error.h"
+#include "gplanner/planner/scene/robot_model.h"
+
+namespace gplanner {
+
+// ROS package name -> folder, so that package://NAME/rest names FOLDER/rest.
+using PackageMap = std::map<std::string, std::string>;
+
+// Resolves a URDF resource: package://NAME/path through `packages`, file:///abs/path,
+// or a path relative to `base_folder`. Throws InputError for an unknown package or a
+// malformed URI (such as package:/// with no package name).
+std::string resolve_resource(const std::string& uri, const std::string& base_folder,
+                             const PackageMap& packages, const SourceLocation& where);
+
+// Loads a URDF: links in topological order, joints (revolute, continuous, prismatic,
+// fixed, floating, planar; limits; mimic), collision geometry as triangle meshes in the
+// link frame (meshes through assimp with the URDF scale, primitives tessellated).
+// Parent-child links joined by a joint are disabled pairs. Throws InputError naming
+// the URDF (and the element and line where known) or `referenced_from` when the file
+// itself is missing.
+RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
+                     const SourceLocation& referenced_from);
+
+// Adds the SRDF's disable_collisions pairs. Elements outside what we use are skipped;
+// elements outside the SRDF core are reported once each in `notices`. A pair naming a
+// link the URDF lacks is an InputError. Returns the number of disable_collisions
+// elements read.
+int apply_srdf(RobotModel* robot, const std::string& srdf_path,
+               const SourceLocation& referenced_from, std::vector<std::string>* notices);
+
+}  // namespace gplanner

@@ -1,0 +1,111 @@
+#include "gplanner/planner/planning/goal_distances.h"
+
+#include <functional>
+#include <limits>
+#include <queue>
+#include <utility>
+
+namespace gplanner {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr std::uint32_t kNone = ~std::uint32_t(0);
+
+using Entry = std::pair<double, std::uint32_t>;  // (cost, vertex)
+using MinQueue = std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>>;
+
+// Dijkstra from the queued vertices outwards over the usable edges: each vertex is
+// settled at its least cost, and its edges lower their other ends' costs. (After
+// remove_edges seeds it, only the affected vertices can be lowered: the others keep the
+// costs of ways that still exist.)
+void settle(const Roadmap& roadmap, bool valid_edges_only, MinQueue* open,
+            std::vector<double>* cost, std::vector<std::uint32_t>* via) {
+  while (!open->empty()) {
+    const auto [c, v] = open->top();
+    open->pop();
+    if (c > (*cost)[v]) continue;
+    for (const std::uint32_t e : roadmap.edges_at(v)) {
+      const RoadmapEdge& edge = roadmap.edge(e);
+      if (!usable(edge, valid_edges_only)) continue;
+      const std::uint32_t w = edge.a == v ? edge.b : edge.a;
+      if (c + edge.length < (*cost)[w]) {
+        (*cost)[w] = c + edge.length;
+        (*via)[w] = e;
+        open->emplace((*cost)[w], w);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void GoalDistances::compute(const Roadmap& roadmap, std::uint32_t goal, bool valid_edges_only) {
+  valid_edges_only_ = valid_edges_only;
+  cost_.assign(roadmap.vertex_count(), kInf);
+  via_.assign(roadmap.vertex_count(), kNone);
+  affected_.assign(roadmap.vertex_count(), 0);
+  MinQueue open;
+  cost_[goal] = 0;
+  open.emplace(0, goal);
+  settle(roadmap, valid_edges_only_, &open, &cost_, &via_);
+}
+
+std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
+                                        const std::vector<std::uint32_t>& edges,
+                                        std::size_t max_affected) {
+  // The affected vertices: those whose first edge to the goal was removed, and then
+  // every vertex whose way goes through an affected one (the tree of ways below them,
+  // found through each affected vertex's edges: w hangs below v when w's first edge is
+  // the edge from v).
+  affected_.resize(cost_.size(), 0);  // all 0 between calls
+  std::vector<std::uint32_t>& found = found_;
+  found.clear();
+  for (const std::uint32_t e : edges) {
+    const RoadmapEdge& edge = roadmap.edge(e);
+    if (usable(edge, valid_edges_only_)) continue;
+    for (const std::uint32_t v : {edge.a, edge.b}) {
+      if (via_[v] == e && !affected_[v]) {
+        affected_[v] = 1;
+        found.push_back(v);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    if (found.size() > max_affected) {
+      for (const std::uint32_t u : found) affected_[u] = 0;
+      return max_affected + 1;
+    }
+    const std::uint32_t v = found[i];
+    for (const std::uint32_t e : roadmap.edges_at(v)) {
+      const RoadmapEdge& edge = roadmap.edge(e);
+      const std::uint32_t w = edge.a == v ? edge.b : edge.a;
+      if (via_[w] == e && !affected_[w]) {
+        affected_[w] = 1;
+        found.push_back(w);
+      }
+    }
+  }
+  // They start from their best neighbour whose cost holds, then settle among themselves
+  // in cost order.
+  MinQueue open;
+  for (const std::uint32_t v : found) {
+    cost_[v] = kInf;
+    via_[v] = kNone;
+    for (const std::uint32_t e : roadmap.edges_at(v)) {
+      const RoadmapEdge& edge = roadmap.edge(e);
+      if (!usable(edge, valid_edges_only_)) continue;
+      const std::uint32_t w = edge.a == v ? edge.b : edge.a;
+      if (affected_[w]) continue;
+      if (cost_[w] + edge.length < cost_[v]) {
+        cost_[v] = cost_[w] + edge.length;
+        via_[v] = e;
+      }
+    }
+    if (via_[v] != kNone) open.emplace(cost_[v], v);
+  }
+  settle(roadmap, valid_edges_only_, &open, &cost_, &via_);
+  for (const std::uint32_t v : found) affected_[v] = 0;
+  return found.size();
+}
+
+}  // namespace gplanner

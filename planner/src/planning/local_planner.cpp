@@ -1,0 +1,192 @@
+#include "gplanner/planner/planning/local_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+#include "gplanner/common/parallel_for.h"
+#include "gplanner/planner/planning/scene_metric.h"
+#include "gplanner/planner/scene/scene.h"
+
+namespace gplanner {
+
+std::vector<int> coarse_to_fine_order(int segments) {
+  std::vector<int> order;
+  if (segments < 2) return order;
+  order.reserve(segments - 1);
+  // Breadth-first over intervals [lo, hi]: each interval's midpoint, then its halves.
+  std::vector<std::pair<int, int>> level{{0, segments}}, next;
+  while (!level.empty()) {
+    next.clear();
+    for (const auto& [lo, hi] : level) {
+      if (hi - lo < 2) continue;
+      const int mid = lo + (hi - lo) / 2;
+      order.push_back(mid);
+      next.emplace_back(lo, mid);
+      next.emplace_back(mid, hi);
+    }
+    level.swap(next);
+  }
+  return order;
+}
+
+LocalPlanner::LocalPlanner(const Scene& scene, CollisionChecker* checker,
+                           const LocalPlannerOptions& options)
+    : scene_(scene),
+      checker_(checker),
+      options_(options),
+      metric_(make_metric(scene.space, scene.planner)),
+      bound_(scene.robot, scene.space) {
+  if (!(options.resolution_fraction > 0) && !(options.max_displacement > 0))
+    throw std::invalid_argument("local planner: the resolution must be positive");
+}
+
+int LocalPlanner::segments(const float* a, const float* b) const {
+  const double length = options_.max_displacement > 0
+                            ? bound_.displacement(a, b) / options_.max_displacement
+                            : component_segments(a, b);
+  if (!(length < 1e9)) throw std::invalid_argument("local planner: motion of unbounded length");
+  return std::max(1, static_cast<int>(std::ceil(length)));
+}
+
+double LocalPlanner::component_segments(const float* a, const float* b) const {
+  // As OMPL counts valid segments in a compound space: each component (base position,
+  // base rotation, each joint) in steps of the fraction of its own extent, the largest
+  // count winning. The rotation's extent is a half turn.
+  const ConfigurationSpace& space = scene_.space;
+  const double f = options_.resolution_fraction;
+  constexpr double kPi = 3.14159265358979323846;
+  double count = 0;
+  if (space.base == BaseType::kFloating) {
+    const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+    const double extent = (space.base_max - space.base_min).norm();
+    if (extent > 0) count = std::sqrt(dx * dx + dy * dy + dz * dz) / (f * extent);
+    count = std::max<double>(count, quaternion_angle(a + 3, b + 3) / (f * kPi));
+  } else if (space.base == BaseType::kPlanar) {
+    const double dx = a[0] - b[0], dy = a[1] - b[1];
+    const double extent = (space.base_max - space.base_min).head<2>().norm();
+    if (extent > 0) count = std::sqrt(dx * dx + dy * dy) / (f * extent);
+    count = std::max<double>(count, angle_difference(a[2], b[2]) / (f * kPi));
+  }
+  const int offset = space.base_width();
+  for (std::size_t j = 0; j < space.planned_joints.size(); ++j) {
+    const float x = a[offset + j], y = b[offset + j];
+    if (space.continuous[j]) {
+      count = std::max<double>(count, angle_difference(x, y) / (f * kPi));
+    } else if (space.upper[j] > space.lower[j]) {
+      count = std::max<double>(count, std::fabs(x - y) / (f * (space.upper[j] - space.lower[j])));
+    }
+  }
+  return count;
+}
+
+bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t count,
+                                 std::uint8_t* invalid) {
+  const std::size_t width = scene_.space.width();
+  std::vector<int> segment_count(count);
+  for (std::size_t e = 0; e < count; ++e) {
+    if (e % 65536 == 0 && e > 0 && should_stop_ && should_stop_()) return false;
+    segment_count[e] = segments(from + e * width, to + e * width);
+  }
+  return check_motions(from, to, count, segment_count.data(), invalid);
+}
+
+bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t count,
+                                 const int* segment_count, std::uint8_t* invalid) {
+  const ConfigurationSpace& space = scene_.space;
+  const std::size_t width = space.width();
+  stats_.motions += count;
+  // Each motion's samples in coarse-to-fine order, one order shared by every motion of
+  // the same segment count (a roadmap's millions of edges have few distinct counts).
+  // The stop is looked at every 65,536 motions here too: PRM hands over all its edges.
+  std::vector<const std::vector<int>*> order(count);
+  std::map<int, std::vector<int>> orders;  // by segment count; nodes never move
+  std::size_t remaining = 0;
+  for (std::size_t e = 0; e < count; ++e) {
+    if (e % 65536 == 0 && e > 0 && should_stop_ && should_stop_()) return false;
+    invalid[e] = 0;
+    auto it = orders.find(segment_count[e]);
+    if (it == orders.end())
+      it = orders.emplace(segment_count[e], coarse_to_fine_order(segment_count[e])).first;
+    order[e] = &it->second;
+    remaining += order[e]->size();
+  }
+  // next[e]: how many of motion e's samples have been checked.
+  std::vector<std::size_t> next(count, 0);
+  std::vector<float> samples;
+  std::vector<std::uint8_t> verdicts;
+  std::size_t per_motion = 1;  // samples per motion this level: 1, 2, 4, ...
+  // Where a call costs as much as checking `call_cost` samples and there are more than
+  // twice that, a first call of about call_cost samples, the coarsest of every motion,
+  // finds most invalid motions (a blocked motion is usually blocked over a stretch) before
+  // their other samples are checked: a shortcut round's 256 candidates, mostly invalid,
+  // cost two calls of a fraction of the samples instead of one of all. Where all motions
+  // are valid, it costs one call more.
+  const std::size_t call_cost = checker_->configurations_per_call_cost();
+  bool probe = call_cost > 0 && count > 0 && remaining > 2 * call_cost;
+  if (probe) per_motion = std::max<std::size_t>(1, call_cost / count);
+  while (remaining > 0) {
+    const bool all_at_once = !probe && remaining <= options_.one_batch_samples;
+    probe = false;
+    std::vector<std::pair<std::uint32_t, int>> picks;  // (motion, sample index)
+    for (std::size_t e = 0; e < count; ++e) {
+      if (invalid[e]) continue;
+      const std::vector<int>& samples_of_e = *order[e];
+      const std::size_t take = all_at_once ? samples_of_e.size() - next[e]
+                                           : std::min(per_motion, samples_of_e.size() - next[e]);
+      for (std::size_t k = 0; k < take; ++k)
+        picks.emplace_back(static_cast<std::uint32_t>(e), samples_of_e[next[e] + k]);
+      next[e] += take;
+    }
+    if (picks.empty()) break;
+    // Batches of at most max_batch_samples, so that memory stays bounded.
+    for (std::size_t first = 0; first < picks.size(); first += options_.max_batch_samples) {
+      if (should_stop_ && should_stop_()) return false;
+      const std::size_t n = std::min(options_.max_batch_samples, picks.size() - first);
+      samples.resize(n * width);
+      parallel_for(
+          n, resolve_thread_count(0),
+          [&](std::size_t begin, std::size_t end, int) {
+            for (std::size_t i = begin; i < end; ++i) {
+              const auto [e, j] = picks[first + i];
+              space.interpolate(from + e * width, to + e * width,
+                                static_cast<double>(j) / segment_count[e], &samples[i * width]);
+            }
+          },
+          1024);
+      verdicts.assign(n, 0);
+      checker_->check(samples.data(), n, verdicts.data());
+      ++stats_.batches;
+      stats_.samples += n;
+      for (std::size_t i = 0; i < n; ++i)
+        if (verdicts[i]) invalid[picks[first + i].first] = 1;
+    }
+    remaining = 0;
+    for (std::size_t e = 0; e < count; ++e)
+      if (!invalid[e]) remaining += order[e]->size() - next[e];
+    per_motion *= 2;
+  }
+  return true;
+}
+
+double LocalPlanner::last_valid_fraction(const float* a, const float* b) {
+  const ConfigurationSpace& space = scene_.space;
+  const std::size_t width = space.width();
+  const int n = segments(a, b);
+  std::vector<float> samples(static_cast<std::size_t>(n) * width);
+  for (int j = 1; j <= n; ++j)
+    space.interpolate(a, b, static_cast<double>(j) / n, &samples[(j - 1) * width]);
+  std::vector<std::uint8_t> verdicts(n);
+  checker_->check(samples.data(), n, verdicts.data());
+  ++stats_.batches;
+  ++stats_.motions;
+  stats_.samples += n;
+  for (int j = 1; j <= n; ++j)
+    if (verdicts[j - 1]) return static_cast<double>(j - 1) / n;
+  return 1.0;
+}
+
+}  // namespace gplanner

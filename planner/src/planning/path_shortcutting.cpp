@@ -1,0 +1,228 @@
+#include "gplanner/planner/planning/path_shortcutting.h"
+
+#include <algorithm>
+#include <limits>
+#include <set>
+#include <utility>
+
+#include "gplanner/planner/scene/configuration_space.h"
+
+namespace gplanner {
+namespace {
+// Rounds stop putting midpoints in once the path has this many waypoints.
+constexpr std::size_t kMaxWaypoints = 256;
+constexpr std::size_t kNone = ~std::size_t(0);
+
+// The shortcuts a round proposes on a path, each with the segment count it is first
+// checked at.
+struct Proposal {
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;  // waypoint indices (i, j)
+  std::vector<float> from, to;                             // shape [pairs, width]
+  std::vector<int> segments;       // at the resolution they are first checked at
+  std::vector<int> fine_segments;  // at the fine resolution
+  // Checked at the fine resolution at once (no second check): where calls cost more
+  // than the extra samples and the fine samples fit one call.
+  bool fine_at_once = false;
+};
+
+// Shortcuts (i, j), j > i + 1, on `path`: all of them when few, else `candidates` at
+// random.
+Proposal propose(const std::vector<float>& path, int width, int candidates, LocalPlanner* local,
+                 LocalPlanner* fine, std::mt19937_64* rng) {
+  Proposal p;
+  const std::size_t m = path.size() / width;
+  const std::size_t all = (m - 1) * (m - 2) / 2;
+  if (all <= static_cast<std::size_t>(candidates)) {
+    for (std::size_t i = 0; i + 2 < m; ++i)
+      for (std::size_t j = i + 2; j < m; ++j) p.pairs.emplace_back(i, j);
+  } else {
+    std::set<std::pair<std::size_t, std::size_t>> chosen;
+    std::uniform_int_distribution<std::size_t> pick(0, m - 1);
+    while (chosen.size() < static_cast<std::size_t>(candidates)) {
+      std::size_t i = pick(*rng), j = pick(*rng);
+      if (i > j) std::swap(i, j);
+      if (j >= i + 2) chosen.emplace(i, j);
+    }
+    p.pairs.assign(chosen.begin(), chosen.end());
+  }
+  const std::size_t n = p.pairs.size();
+  p.from.resize(n * width);
+  p.to.resize(n * width);
+  p.segments.resize(n);
+  p.fine_segments.resize(n);
+  std::size_t coarse_samples = 0, fine_samples = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    std::copy_n(&path[p.pairs[k].first * width], width, &p.from[k * width]);
+    std::copy_n(&path[p.pairs[k].second * width], width, &p.to[k * width]);
+    p.segments[k] = local->segments(&p.from[k * width], &p.to[k * width]);
+    p.fine_segments[k] = fine->segments(&p.from[k * width], &p.to[k * width]);
+    coarse_samples += p.segments[k] - 1;
+    fine_samples += p.fine_segments[k] - 1;
+  }
+  p.fine_at_once = fine_samples <= fine->one_batch_samples() &&
+                   fine_samples < coarse_samples + local->configurations_per_call_cost();
+  if (p.fine_at_once) p.segments = p.fine_segments;
+  return p;
+}
+
+// The waypoints on the way that ends at the last one (by `parent`), first to last.
+std::vector<std::size_t> kept_waypoints(const std::vector<std::size_t>& parent) {
+  std::vector<std::size_t> kept;
+  for (std::size_t j = parent.size() - 1;; j = parent[j]) {
+    kept.push_back(j);
+    if (j == 0) break;
+  }
+  std::reverse(kept.begin(), kept.end());
+  return kept;
+}
+
+// The path through the kept waypoints of `path`, with a midpoint in every segment when
+// `refine` (so that the next round can cut corners closer).
+std::vector<float> kept_path(const ConfigurationSpace& space, const std::vector<float>& path,
+                             const std::vector<std::size_t>& kept, bool refine) {
+  const int width = space.width();
+  std::vector<float> next;
+  std::vector<float> mid(width);
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    const float* q = &path[kept[k] * width];
+    if (k > 0 && refine) {
+      space.interpolate(&path[kept[k - 1] * width], q, 0.5, mid.data());
+      next.insert(next.end(), mid.begin(), mid.end());
+    }
+    next.insert(next.end(), q, q + width);
+  }
+  return next;
+}
+
+}  // namespace
+
+double path_length(const ConfigurationMetric& metric, const std::vector<float>& path, int width) {
+  double length = 0;
+  const std::size_t m = path.size() / width;
+  for (std::size_t i = 1; i < m; ++i)
+    length += configuration_distance(metric, &path[(i - 1) * width], &path[i * width]);
+  return length;
+}
+
+double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, LocalPlanner* fine,
+                     int rounds, int candidates, std::mt19937_64* rng, std::vector<float>* path) {
+  const int width = space.width();
+  const ConfigurationMetric& metric = local->metric();
+  // Where calls cost more than samples, the next round's shortcuts are proposed on the
+  // path this round gives if the shortcuts it takes pass their fine check, and checked
+  // in the same call as that fine check; if one fails, that proposal is dropped (and
+  // the generator set back), so the result is the same either way.
+  const bool pipelined = local->configurations_per_call_cost() > 0;
+  Proposal ahead;  // the next round's shortcuts, already checked
+  std::vector<std::uint8_t> ahead_invalid;
+  bool have_ahead = false;
+  for (int round = 0; round < rounds; ++round) {
+    const std::size_t m = path->size() / width;
+    if (m < 3) break;
+    Proposal p;
+    std::vector<std::uint8_t> invalid;
+    if (have_ahead) {
+      p = std::move(ahead);
+      invalid = std::move(ahead_invalid);
+      have_ahead = false;
+    } else {
+      p = propose(*path, width, candidates, local, fine, rng);
+      invalid.resize(p.pairs.size());
+      if (!local->check_motions(p.from.data(), p.to.data(), p.pairs.size(), p.segments.data(),
+                                invalid.data()))
+        break;
+    }
+    const bool refine = round + 1 < rounds;  // midpoints, unless the path has too many
+    auto d = [&](std::size_t i, std::size_t j) {
+      return static_cast<double>(
+          configuration_distance(metric, &(*path)[i * width], &(*path)[j * width]));
+    };
+    // Shortest way through the waypoints in order, over the path's own segments and the
+    // shortcuts valid so far; the shortcuts it takes are checked again at the fine
+    // resolution, and those failing drop out, until the way holds only certified ones.
+    std::vector<std::uint8_t> certified(p.pairs.size(), p.fine_at_once ? 1 : 0);
+    std::vector<std::size_t> parent(m, 0), via(m, kNone);
+    while (true) {
+      std::vector<std::vector<std::size_t>> into(m);  // valid shortcuts ending at j
+      for (std::size_t k = 0; k < p.pairs.size(); ++k)
+        if (!invalid[k]) into[p.pairs[k].second].push_back(k);
+      std::vector<double> best(m, std::numeric_limits<double>::infinity());
+      best[0] = 0;
+      for (std::size_t j = 1; j < m; ++j) {
+        best[j] = best[j - 1] + d(j - 1, j);
+        parent[j] = j - 1;
+        via[j] = kNone;
+        for (const std::size_t k : into[j]) {
+          const std::size_t i = p.pairs[k].first;
+          const double c = best[i] + d(i, j);
+          if (c < best[j]) {
+            best[j] = c;
+            parent[j] = i;
+            via[j] = k;
+          }
+        }
+      }
+      std::vector<std::size_t> unchecked;
+      for (std::size_t j = m - 1; j > 0; j = parent[j])
+        if (via[j] != kNone && !certified[via[j]]) unchecked.push_back(via[j]);
+      if (unchecked.empty()) break;
+      // The fine check of the way's shortcuts, and (pipelined) the next round's
+      // shortcuts on the path this way would give.
+      std::vector<float> a, b;
+      std::vector<int> segments;
+      for (const std::size_t k : unchecked) {
+        a.insert(a.end(), &p.from[k * width], &p.from[(k + 1) * width]);
+        b.insert(b.end(), &p.to[k * width], &p.to[(k + 1) * width]);
+        segments.push_back(p.fine_segments[k]);
+      }
+      const std::mt19937_64 rng_before = *rng;
+      Proposal next;
+      bool with_next = false;
+      if (pipelined && round + 1 < rounds) {
+        const std::vector<std::size_t> kept = kept_waypoints(parent);
+        const bool refined = refine && 2 * kept.size() <= kMaxWaypoints;
+        if (kept.size() < m || refined) {  // there will be a next round
+          const std::vector<float> if_passed = kept_path(space, *path, kept, refined);
+          if (if_passed.size() / width >= 3) {
+            next = propose(if_passed, width, candidates, local, fine, rng);
+            a.insert(a.end(), next.from.begin(), next.from.end());
+            b.insert(b.end(), next.to.begin(), next.to.end());
+            segments.insert(segments.end(), next.segments.begin(), next.segments.end());
+            with_next = true;
+          }
+        }
+      }
+      std::vector<std::uint8_t> fails(segments.size());
+      const bool checked = pipelined ? local->check_motions(a.data(), b.data(), segments.size(),
+                                                            segments.data(), fails.data())
+                                     : fine->check_motions(a.data(), b.data(), segments.size(),
+                                                           segments.data(), fails.data());
+      if (!checked) return path_length(metric, *path, width);  // stopped: the path as it was
+      bool all_passed = true;
+      for (std::size_t u = 0; u < unchecked.size(); ++u) {
+        if (fails[u]) {
+          invalid[unchecked[u]] = 1;
+          all_passed = false;
+        } else {
+          certified[unchecked[u]] = 1;
+        }
+      }
+      if (with_next && all_passed) {
+        ahead = std::move(next);
+        ahead_invalid.assign(fails.begin() + unchecked.size(), fails.end());
+        have_ahead = true;
+      } else if (with_next) {
+        *rng = rng_before;
+      }
+    }
+    const std::vector<std::size_t> kept = kept_waypoints(parent);
+    const bool refined = refine && 2 * kept.size() <= kMaxWaypoints;
+    const bool shorter = kept.size() < m;
+    std::vector<float> next_path = kept_path(space, *path, kept, refined);
+    path->swap(next_path);
+    if (!shorter && !refined) break;
+  }
+  return path_length(metric, *path, width);
+}
+
+}  // namespace gplanner

@@ -1,0 +1,248 @@
+#include "gplanner/planner/planning/roadmap.h"
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <stdexcept>
+
+#include "gplanner/planner/output/atomic_file.h"
+#include "gplanner/planner/scene/scene.h"
+
+namespace gplanner {
+namespace {
+
+constexpr char kMagic[] = "gplanner-roadmap 1\n";
+
+// FNV-1a, 64 bit.
+class Hash {
+ public:
+  void bytes(const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) {
+      value_ ^= p[i];
+      value_ *= 1099511628211ull;
+    }
+  }
+  template <typename T>
+  void add(const T& x) {
+    bytes(&x, sizeof(x));
+  }
+  void add(const std::string& s) {
+    add(s.size());
+    bytes(s.data(), s.size());
+  }
+  void add(const Eigen::Isometry3d& X) { bytes(X.matrix().data(), sizeof(double) * 16); }
+  void add(const TriangleMesh& mesh) {
+    add(mesh.vertices.size());
+    for (const Eigen::Vector3d& v : mesh.vertices) bytes(v.data(), sizeof(double) * 3);
+    add(mesh.triangles.size());
+    for (const auto& t : mesh.triangles) bytes(t.data(), sizeof(int) * 3);
+  }
+  std::uint64_t value() const { return value_; }
+
+ private:
+  std::uint64_t value_ = 1469598103934665603ull;
+};
+
+template <typename T>
+void put(std::ostream& out, const T& x) {
+  out.write(reinterpret_cast<const char*>(&x), sizeof(T));
+}
+
+// Reads from an in-memory image, failing with the file's name when it runs short.
+class Reader {
+ public:
+  Reader(const std::string& data, const std::string& path) : data_(data), path_(path) {}
+  template <typename T>
+  T get() {
+    T x;
+    take(&x, sizeof(T));
+    return x;
+  }
+  void take(void* out, std::size_t n) {
+    if (n > data_.size() - at_)
+      throw std::runtime_error(path_ + ": roadmap file is damaged (truncated); build it again");
+    std::memcpy(out, data_.data() + at_, n);
+    at_ += n;
+  }
+  std::size_t at() const { return at_; }
+
+ private:
+  const std::string& data_;
+  const std::string& path_;
+  std::size_t at_ = 0;
+};
+
+}  // namespace
+
+std::uint32_t Roadmap::add_vertex(const float* q) {
+  vertices_.insert(vertices_.end(), q, q + width_);
+  adjacency_.emplace_back();
+  return static_cast<std::uint32_t>(adjacency_.size() - 1);
+}
+
+namespace {
+constexpr std::size_t kFirstEdgeRoom = 32;
+}  // namespace
+
+long long Roadmap::add_edge(std::uint32_t a, std::uint32_t b, float length, EdgeState state) {
+  if (a == b || find_edge(a, b) >= 0) return -1;
+  if (a > b) std::swap(a, b);
+  const auto e = static_cast<std::uint32_t>(edges_.size());
+  edges_.push_back({a, b, length, state});
+  // A milestone gets about twice k edges: room for that at its first, instead of the
+  // five or six reallocations of doubling from one.
+  for (const std::uint32_t v : {a, b}) {
+    if (adjacency_[v].empty()) adjacency_[v].reserve(kFirstEdgeRoom);
+    adjacency_[v].push_back(e);
+  }
+  return e;
+}
+
+long long Roadmap::find_edge(std::uint32_t a, std::uint32_t b) const {
+  if (a == b || a >= adjacency_.size() || b >= adjacency_.size()) return -1;
+  // The shorter list: a new milestone has about k edges, where a hub may have thousands.
+  const std::uint32_t v = adjacency_[a].size() <= adjacency_[b].size() ? a : b;
+  const std::uint32_t w = v == a ? b : a;
+  for (const std::uint32_t e : adjacency_[v]) {
+    const RoadmapEdge& edge = edges_[e];
+    if (edge.a == w || edge.b == w) return e;
+  }
+  return -1;
+}
+
+std::uint64_t scene_fingerprint(const Scene& scene) {
+  Hash h;
+  const RobotModel& robot = scene.robot;
+  h.add(robot.links.size());
+  for (const Link& link : robot.links) {
+    h.add(link.parent_joint);
+    h.add(link.collision);
+  }
+  h.add(robot.joints.size());
+  for (const Joint& joint : robot.joints) {
+    h.add(static_cast<int>(joint.type));
+    h.add(joint.parent_link);
+    h.add(joint.child_link);
+    h.add(joint.X_PJ);
+    h.bytes(joint.axis_J.data(), sizeof(double) * 3);
+    h.add(joint.lower);
+    h.add(joint.upper);
+    h.add(joint.mimic_joint);
+    h.add(joint.mimic_multiplier);
+    h.add(joint.mimic_offset);
+  }
+  for (const auto& [a, b] : robot.disabled_pairs) {
+    h.add(a);
+    h.add(b);
+  }
+  h.add(scene.obstacles.size());
+  for (const Obstacle& obstacle : scene.obstacles) h.add(obstacle.mesh_S);
+  const ConfigurationSpace& space = scene.space;
+  h.add(static_cast<int>(space.base));
+  h.add(space.X_SB);
+  h.bytes(space.base_min.data(), sizeof(double) * 3);
+  h.bytes(space.base_max.data(), sizeof(double) * 3);
+  // Rows are in the scene frame: they mean the same world poses only with the same
+  // frame. Hashed only when moved, so that roadmaps of scenes near the origin (whose
+  // frame is the world's) keep their fingerprint.
+  if (!scene.p_WS.isZero()) {
+    h.bytes(scene.p_WS.data(), sizeof(double) * 3);
+    h.bytes(space.row_origin.data(), sizeof(double) * 3);
+  }
+  for (std::size_t j = 0; j < space.planned_joints.size(); ++j) {
+    h.add(space.planned_joints[j]);
+    h.add(space.lower[j]);
+    h.add(space.upper[j]);
+    h.add(static_cast<bool>(space.continuous[j]));
+  }
+  for (const double v : space.fixed_positions) h.add(v);
+  for (const char* key :
+       {"distance_weights.position", "distance_weights.rotation", "distance_weights.joint",
+        "delta_fraction", "edge_resolution", "max_displacement"}) {
+    h.add(std::string(key));
+    h.add(scene.planner.number(key));
+  }
+  return h.value();
+}
+
+void save_roadmap(const Roadmap& roadmap, const Scene& scene, const std::string& path) {
+  std::ostringstream image;
+  image.write(kMagic, sizeof(kMagic) - 1);
+  put(image, scene_fingerprint(scene));
+  put(image, static_cast<std::int32_t>(roadmap.width()));
+  put(image, static_cast<std::uint64_t>(roadmap.vertex_count()));
+  put(image, static_cast<std::uint64_t>(roadmap.edge_count()));
+  image.write(reinterpret_cast<const char*>(roadmap.vertices().data()),
+              roadmap.vertices().size() * sizeof(float));
+  for (const RoadmapEdge& e : roadmap.edges()) {
+    put(image, e.a);
+    put(image, e.b);
+    put(image, e.length);
+    put(image, static_cast<std::uint8_t>(e.state));
+  }
+  const std::string data = image.str();
+  Hash checksum;
+  checksum.bytes(data.data(), data.size());
+  write_file_atomically(path, [&](std::ostream& out) {
+    out.write(data.data(), data.size());
+    put(out, checksum.value());
+  });
+}
+
+Roadmap load_roadmap(const Scene& scene, const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot open the roadmap file");
+  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t magic = sizeof(kMagic) - 1;
+  if (data.size() < magic || data.compare(0, magic, kMagic) != 0)
+    throw std::runtime_error(path + ": not a gplanner roadmap file");
+  if (data.size() < magic + sizeof(std::uint64_t))
+    throw std::runtime_error(path + ": roadmap file is damaged (truncated); build it again");
+  const std::size_t body = data.size() - sizeof(std::uint64_t);
+  Hash checksum;
+  checksum.bytes(data.data(), body);
+  std::uint64_t stored = 0;
+  std::memcpy(&stored, data.data() + body, sizeof(stored));
+  Reader reader(data, path);
+  char skip[sizeof(kMagic)];
+  reader.take(skip, magic);
+  const std::uint64_t fingerprint = reader.get<std::uint64_t>();
+  if (stored != checksum.value())
+    throw std::runtime_error(path +
+                             ": roadmap file is damaged (checksum mismatch); build it again");
+  if (fingerprint != scene_fingerprint(scene)) {
+    throw std::runtime_error(path + ": roadmap belongs to another scene, or to other settings of " +
+                             scene.file +
+                             " (robot, obstacles, bounds, weights, tolerance or "
+                             "resolution differ); build it again for this scene");
+  }
+  const std::int32_t width = reader.get<std::int32_t>();
+  const std::uint64_t vertices = reader.get<std::uint64_t>();
+  const std::uint64_t edges = reader.get<std::uint64_t>();
+  const std::uint64_t edge_bytes = 4 + 4 + 4 + 1;
+  if (width != scene.space.width() || vertices > body / sizeof(float) ||
+      edges > body / edge_bytes ||
+      reader.at() + vertices * width * sizeof(float) + edges * edge_bytes != body) {
+    throw std::runtime_error(path + ": roadmap file is damaged (sizes disagree); build it again");
+  }
+  Roadmap roadmap(width);
+  std::vector<float> q(width);
+  for (std::uint64_t v = 0; v < vertices; ++v) {
+    reader.take(q.data(), sizeof(float) * width);
+    roadmap.add_vertex(q.data());
+  }
+  for (std::uint64_t e = 0; e < edges; ++e) {
+    const auto a = reader.get<std::uint32_t>();
+    const auto b = reader.get<std::uint32_t>();
+    const auto length = reader.get<float>();
+    const auto state = reader.get<std::uint8_t>();
+    if (a >= vertices || b >= vertices || a >= b || state > 2 || roadmap.find_edge(a, b) >= 0)
+      throw std::runtime_error(path + ": roadmap file is damaged (bad edge); build it again");
+    roadmap.add_edge(a, b, length, static_cast<EdgeState>(state));
+  }
+  return roadmap;
+}
+
+}  // namespace gplanner

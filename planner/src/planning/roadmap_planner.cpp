@@ -1,0 +1,366 @@
+#include "gplanner/planner/planning/roadmap_planner.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gplanner/common/parallel_for.h"
+#include "gplanner/planner/planning/goal_distances.h"
+#include "gplanner/planner/planning/graph_search.h"
+#include "gplanner/planner/planning/path_shortcutting.h"
+#include "gplanner/planner/scene/scene.h"
+
+namespace gplanner {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Adds the time from construction to destruction to `*sink`.
+class StageTimer {
+ public:
+  explicit StageTimer(double* sink) : sink_(sink), start_(Clock::now()) {}
+  ~StageTimer() { *sink_ += seconds_since(start_); }
+
+ private:
+  double* sink_;
+  Clock::time_point start_;
+};
+
+LocalPlannerOptions refined(LocalPlannerOptions options, int refinement) {
+  options.resolution_fraction /= refinement;
+  options.max_displacement /= refinement;
+  return options;
+}
+
+}  // namespace
+
+const char* strategy_name(RoadmapStrategy strategy) {
+  return strategy == RoadmapStrategy::kPrm ? "prm" : "lazyprm";
+}
+
+bool parse_strategy(const std::string& name, RoadmapStrategy* strategy) {
+  if (name == "prm") {
+    *strategy = RoadmapStrategy::kPrm;
+  } else if (name == "lazyprm") {
+    *strategy = RoadmapStrategy::kLazyPrm;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
+                               NeighborFinder* neighbors, RoadmapStrategy strategy,
+                               const PlanOptions& options)
+    : scene_(scene),
+      checker_(checker),
+      neighbors_(neighbors),
+      strategy_(strategy),
+      options_(options),
+      local_(scene, checker, options.local),
+      sampler_(scene.space, local_.metric(), options.sampler),
+      roadmap_(scene.space.width()),
+      rng_(options.seed) {}
+
+double RoadmapPlanner::elapsed() const { return seconds_since(started_); }
+
+bool RoadmapPlanner::out_of_time(PlanResult* result) const {
+  if (options_.should_stop && options_.should_stop()) {
+    result->stop_reason = "stopped";
+    return true;
+  }
+  if (elapsed() >= options_.time_limit_s) {
+    result->stop_reason = "time limit";
+    return true;
+  }
+  return false;
+}
+
+void RoadmapPlanner::report(const char* stage, const PlanResult& result) const {
+  if (!options_.progress) return;
+  std::size_t valid = 0;
+  for (const RoadmapEdge& e : roadmap_.edges()) valid += e.state == EdgeState::kValid;
+  options_.progress(
+      {stage, result.rounds, roadmap_.vertex_count(), roadmap_.edge_count(), valid, elapsed()});
+}
+
+std::size_t RoadmapPlanner::add_milestones(std::size_t count, PlanResult* result) {
+  // Batches sized by the milestones found per attempt so far, until `count` are in (or
+  // the time is up): a first batch of `count` attempts, then usually one more.
+  const int width = scene_.space.width();
+  constexpr std::size_t kMaxBatch = std::size_t(1) << 22;
+  std::size_t added = 0;
+  while (added < count) {
+    const double yield =
+        attempts_ ? std::max(0.01, static_cast<double>(attempts_found_) / attempts_) : 1.0;
+    const std::size_t batch = std::min<std::size_t>(
+        kMaxBatch, static_cast<std::size_t>(std::ceil((count - added) / yield * 1.1)));
+    std::vector<float> found;
+    result->states_checked += sampler_.sample(&rng_, batch, checker_, &found, &result->times);
+    const std::size_t n = found.size() / width;
+    attempts_ += batch;
+    attempts_found_ += n;
+    for (std::size_t i = 0; i < n && added < count; ++i, ++added)
+      roadmap_.add_vertex(&found[i * width]);
+    if (out_of_time(result)) break;
+  }
+  return added;
+}
+
+std::size_t RoadmapPlanner::connect(PlanResult* result) {
+  // The new milestones joined to their k nearest in chunks of kChunk, each chunk's among
+  // the milestones before it and itself (later ones join back to it), so that a stop or
+  // the time limit is seen between chunks: one k-NN call over millions of new milestones
+  // took tens of seconds past the limit. Rounds of up to kChunk new milestones are one call.
+  constexpr std::size_t kChunk = std::size_t(1) << 18;
+  StageTimer timer(&result->times.knn);
+  const std::size_t n = roadmap_.vertex_count();
+  const int k = options_.neighbors;
+  const ConfigurationMetric& metric = local_.metric();
+  std::vector<int> nearest;
+  std::size_t added = 0;
+  for (std::size_t first = std::min(connected_, n); first < n;) {
+    const std::size_t end = std::min(n, first + kChunk);
+    neighbors_->nearest_of_new(roadmap_.vertices().data(), end, first, k, &nearest);
+    // The edges' lengths on all cores, then the edges themselves in order.
+    std::vector<float> lengths(nearest.size());
+    parallel_for(
+        end - first, resolve_thread_count(0),
+        [&](std::size_t begin, std::size_t stop, int) {
+          for (std::size_t i = begin; i < stop; ++i) {
+            for (int j = 0; j < k && nearest[i * k + j] >= 0; ++j) {
+              lengths[i * k + j] = configuration_distance(metric, roadmap_.vertex(first + i),
+                                                          roadmap_.vertex(nearest[i * k + j]));
+            }
+          }
+        },
+        512);
+    roadmap_.reserve_edges(roadmap_.edge_count() + (end - first) * k);
+    for (std::size_t v = first; v < end; ++v) {
+      for (int j = 0; j < k; ++j) {
+        const int w = nearest[(v - first) * k + j];
+        if (w < 0) break;
+        if (roadmap_.add_edge(static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(w),
+                              lengths[(v - first) * k + j]) >= 0) {
+          ++added;
+        }
+      }
+    }
+    connected_ = first = end;
+    if (first < n && out_of_time(result)) break;
+  }
+  return added;
+}
+
+std::vector<std::uint32_t> RoadmapPlanner::unknown_edges(const GraphPath& path) const {
+  std::vector<std::uint32_t> unknown;
+  for (const std::uint32_t e : path.edges)
+    if (roadmap_.edge(e).state == EdgeState::kUnknown) unknown.push_back(e);
+  return unknown;
+}
+
+void RoadmapPlanner::add_next_paths(const GoalDistances& to_goal, std::uint32_t s, std::uint32_t g,
+                                    std::size_t shortest_vertices,
+                                    std::vector<std::uint32_t>* batch, PlanResult* result) {
+  // The batch's edges are set aside (marked invalid) while the next path is searched,
+  // whose unknown edges join the batch, and so on; then they are unknown again. The
+  // shortest valid path is found all the same: the batch only makes more unknown edges
+  // known. Stops at a path with no unknown edge (a valid way no longer than any later
+  // one), once the batch's samples would fill one checker call, or where setting the
+  // batch aside would search again, or a search would expand, more than kSpeculation
+  // times the shortest path's vertices (at least kMinSpeculation): with the batch set
+  // aside the ways to the goal may have to go around much of the roadmap, which costs
+  // more than the checker call it saves.
+  constexpr std::size_t kSpeculation = 32, kMinSpeculation = 1024;
+  if (options_.lazy_batch_paths <= 1) return;
+  const std::size_t max_expanded = std::max(kMinSpeculation, kSpeculation * shortest_vertices);
+  const std::size_t sample_budget = options_.local.one_batch_samples;
+  auto samples_of = [&](const std::vector<std::uint32_t>& edges) {
+    std::size_t samples = 0;
+    for (const std::uint32_t e : edges) {
+      const RoadmapEdge& edge = roadmap_.edge(e);
+      samples += local_.segments(roadmap_.vertex(edge.a), roadmap_.vertex(edge.b)) - 1;
+    }
+    return samples;
+  };
+  std::size_t samples = samples_of(*batch);
+  for (const std::uint32_t e : *batch) roadmap_.edge(e).state = EdgeState::kInvalid;
+  // The costs to the goal with the batch set aside, kept exact the same way while that
+  // searches again at most kRepair times the shortest path's vertices, so that each
+  // search goes straight along the next path (led by to_goal itself the searches went
+  // around the set-aside edges: with 64 paths a batch, most of the search time). Past
+  // that (the batch cuts through where many ways to the goal go), the last exact costs
+  // lead the searches. (8: on the humanoid, pr2_base_arm and the piano a bound of 2
+  // searched up to 30 % longer, and max_expanded alone up to 2.3x.)
+  constexpr std::size_t kRepair = 8;
+  const std::size_t max_repair = std::min(max_expanded, kRepair * shortest_vertices);
+  GoalDistances aside = to_goal;
+  bool exact = aside.remove_edges(roadmap_, *batch, max_repair) <= max_repair;
+  for (int p = 1; p < options_.lazy_batch_paths; ++p) {
+    const GraphPath next =
+        shortest_path(roadmap_, aside.cost(), s, g, /*valid_edges_only=*/false, max_expanded);
+    ++result->searches;
+    if (next.vertices.empty()) break;
+    const std::vector<std::uint32_t> unknown = unknown_edges(next);
+    if (unknown.empty()) break;
+    samples += samples_of(unknown);
+    if (samples > sample_budget) break;
+    for (const std::uint32_t e : unknown) {
+      roadmap_.edge(e).state = EdgeState::kInvalid;
+      batch->push_back(e);
+    }
+    if (exact) exact = aside.remove_edges(roadmap_, unknown, max_repair) <= max_repair;
+  }
+  for (const std::uint32_t e : *batch) roadmap_.edge(e).state = EdgeState::kUnknown;
+}
+
+bool RoadmapPlanner::check_edge_motions(LocalPlanner* planner,
+                                        const std::vector<std::uint32_t>& edges,
+                                        std::vector<std::uint8_t>* invalid) const {
+  const int width = scene_.space.width();
+  std::vector<float> from(edges.size() * width), to(edges.size() * width);
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const RoadmapEdge& e = roadmap_.edge(edges[i]);
+    std::copy_n(roadmap_.vertex(e.a), width, &from[i * width]);
+    std::copy_n(roadmap_.vertex(e.b), width, &to[i * width]);
+  }
+  invalid->resize(edges.size());
+  return planner->check_motions(from.data(), to.data(), edges.size(), invalid->data());
+}
+
+void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result) {
+  if (edges.empty()) return;
+  StageTimer timer(&result->times.edge_checks);
+  std::vector<std::uint8_t> invalid;
+  // Stopped part way: the edges stay unknown.
+  if (!check_edge_motions(&local_, edges, &invalid)) return;
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    roadmap_.edge(edges[i]).state = invalid[i] ? EdgeState::kInvalid : EdgeState::kValid;
+  result->edges_checked += edges.size();
+}
+
+PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
+  started_ = Clock::now();
+  PlanResult result;
+  local_.reset_stats();
+  const int width = scene_.space.width();
+  local_.set_stop([this] {
+    return (options_.should_stop && options_.should_stop()) || elapsed() >= options_.time_limit_s;
+  });
+  sampler_.set_endpoints(start, goal);
+  const std::uint32_t s = roadmap_.add_vertex(start);
+  const std::uint32_t g = roadmap_.add_vertex(goal);
+  LocalPlanner fine(scene_, checker_, refined(options_.local, options_.final_check_refinement));
+  const bool lazy = strategy_ == RoadmapStrategy::kLazyPrm;
+  GraphPath found;
+  for (std::size_t round = 0; found.vertices.empty(); ++round) {
+    if (out_of_time(&result)) break;
+    result.rounds = round + 1;
+    // The first round samples `milestones` (none more when a loaded roadmap has that
+    // many); later rounds double the roadmap.
+    const std::size_t have = roadmap_.vertex_count() - 2;
+    const std::size_t count = round == 0 ? (have >= options_.milestones ? 0 : options_.milestones)
+                                         : std::max(options_.milestones, have);
+    if (count > 0) add_milestones(count, &result);
+    report("milestones", result);
+    connect(&result);
+    report("neighbours", result);
+    if (!lazy) {
+      std::vector<std::uint32_t> unknown;
+      for (std::size_t e = 0; e < roadmap_.edge_count(); ++e)
+        if (roadmap_.edge(e).state == EdgeState::kUnknown) unknown.push_back(e);
+      check_edges(unknown, &result);
+      report("edges", result);
+    }
+    // Search; lazy PRM checks the unknown edges of each path found, until one is valid.
+    // The heuristic is every vertex's cost to the goal over this round's roadmap, kept
+    // exact as edges turn invalid (GoalDistances), so that each search goes straight
+    // along the next shortest path.
+    GoalDistances to_goal;
+    {
+      StageTimer timer(&result.times.search);
+      to_goal.compute(roadmap_, g, /*valid_edges_only=*/!lazy);
+    }
+    // Edges found invalid: removed from to_goal's ways.
+    auto remove_invalid = [&](const std::vector<std::uint32_t>& checked) {
+      StageTimer timer(&result.times.search);
+      std::vector<std::uint32_t> removed;
+      for (const std::uint32_t e : checked)
+        if (roadmap_.edge(e).state == EdgeState::kInvalid) removed.push_back(e);
+      to_goal.remove_edges(roadmap_, removed);
+    };
+    while (!out_of_time(&result)) {
+      GraphPath path;
+      {
+        StageTimer timer(&result.times.search);
+        path = shortest_path(roadmap_, to_goal.cost(), s, g, /*valid_edges_only=*/!lazy);
+        ++result.searches;
+      }
+      if (path.vertices.empty()) break;
+      std::vector<std::uint32_t> unknown = unknown_edges(path);
+      if (!unknown.empty()) {
+        {
+          StageTimer timer(&result.times.search);
+          add_next_paths(to_goal, s, g, path.vertices.size(), &unknown, &result);
+        }
+        check_edges(unknown, &result);
+        remove_invalid(unknown);
+        report("edges", result);
+        continue;
+      }
+      // Every edge valid: re-check finely the path's edges not yet re-checked; an edge
+      // failing that is invalid.
+      std::vector<std::uint32_t> unchecked;
+      for (const std::uint32_t e : path.edges)
+        if (!certified_.count(e)) unchecked.push_back(e);
+      std::vector<std::uint8_t> invalid;
+      bool checked;
+      {
+        StageTimer timer(&result.times.edge_checks);
+        checked = check_edge_motions(&fine, unchecked, &invalid);
+      }
+      if (!checked) break;  // stopped: nothing certified
+      bool certified = true;
+      for (std::size_t i = 0; i < unchecked.size(); ++i) {
+        if (invalid[i]) {
+          roadmap_.edge(unchecked[i]).state = EdgeState::kInvalid;
+          certified = false;
+        } else {
+          certified_.insert(unchecked[i]);
+        }
+      }
+      remove_invalid(unchecked);
+      if (certified) {
+        found = path;
+        break;
+      }
+    }
+  }
+  result.milestones = roadmap_.vertex_count();
+  result.edges = roadmap_.edge_count();
+  if (!found.vertices.empty()) {
+    result.solved = true;
+    result.stop_reason = "solved";
+    for (const std::uint32_t v : found.vertices) {
+      const float* q = roadmap_.vertex(v);
+      result.path.insert(result.path.end(), q, q + width);
+    }
+    result.length_before_shortcut = path_length(local_.metric(), result.path, width);
+    result.length = result.length_before_shortcut;
+    if (options_.shortcut_rounds > 0) {
+      StageTimer timer(&result.times.shortcutting);
+      result.length = shortcut_path(scene_.space, &local_, &fine, options_.shortcut_rounds,
+                                    options_.shortcut_candidates, &rng_, &result.path);
+      report("shortcut", result);
+    }
+  }
+  result.samples_checked = local_.stats().samples;
+  result.edge_batches = local_.stats().batches + fine.stats().batches;
+  result.times.total = elapsed();
+  return result;
+}
+
+}  // namespace gplanner

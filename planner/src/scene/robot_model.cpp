@@ -1,0 +1,71 @@
+#include "gplanner/planner/scene/robot_model.h"
+
+#include <algorithm>
+#include <set>
+
+namespace gplanner {
+
+const char* joint_type_name(JointType type) {
+  switch (type) {
+    case JointType::kFixed:
+      return "fixed";
+    case JointType::kRevolute:
+      return "revolute";
+    case JointType::kContinuous:
+      return "continuous";
+    case JointType::kPrismatic:
+      return "prismatic";
+    case JointType::kFloating:
+      return "floating";
+    case JointType::kPlanar:
+      return "planar";
+  }
+  return "unknown";
+}
+
+int RobotModel::find_link(const std::string& link_name) const {
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    if (links[i].name == link_name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+int RobotModel::find_joint(const std::string& joint_name) const {
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    if (joints[i].name == joint_name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+std::size_t RobotModel::triangle_count() const {
+  std::size_t count = 0;
+  for (const Link& link : links) count += link.collision.triangle_count();
+  return count;
+}
+
+std::vector<std::pair<int, int>> RobotModel::checked_pairs() const {
+  const std::set<std::pair<int, int>> disabled(disabled_pairs.begin(), disabled_pairs.end());
+  std::vector<std::pair<int, int>> pairs;
+  for (int a = 0; a < static_cast<int>(links.size()); ++a) {
+    if (links[a].collision.empty()) continue;
+    for (int b = a + 1; b < static_cast<int>(links.size()); ++b) {
+      if (links[b].collision.empty() || disabled.count({a, b})) continue;
+      pairs.emplace_back(a, b);
+    }
+  }
+  return pairs;
+}
+
+RobotModel make_rigid_robot(const std::string& name, TriangleMesh mesh,
+                            const std::string& source_file) {
+  RobotModel robot;
+  robot.name = name;
+  robot.source_file = source_file;
+  Link body;
+  body.name = name;
+  body.collision = std::move(mesh);
+  robot.links.push_back(std::move(body));
+  return robot;
+}
+
+}  // namespace gplanner

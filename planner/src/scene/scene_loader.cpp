@@ -1,0 +1,643 @@
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include "gplanner/planner/scene/mesh_loader.h"
+#include "gplanner/planner/scene/scene.h"
+#include "gplanner/planner/scene/scene_collision_model.h"
+#include "gplanner/planner/scene/urdf_loader.h"
+
+namespace gplanner {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Reads typed values out of one YAML document, turning every problem into an
+// InputError with the file, the line and the key path ("robot.base_pose.xyz").
+class YamlReader {
+ public:
+  explicit YamlReader(std::string file) : file_(std::move(file)) {}
+
+  const std::string& file() const { return file_; }
+
+  SourceLocation at(const YAML::Node& node, const std::string& key) const {
+    const int line = node.IsDefined() && node.Mark().line >= 0 ? node.Mark().line + 1 : 0;
+    return {file_, line, key};
+  }
+
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& key,
+                         const std::string& problem) const {
+    throw InputError(at(node, key), problem);
+  }
+
+  // Requires a map whose keys are all in `allowed`; returns it.
+  void expect_map(const YAML::Node& node, const std::string& key,
+                  const std::set<std::string>& allowed) const {
+    if (!node.IsMap()) fail(node, key, "expected a map of keys, found " + kind(node));
+    for (const auto& entry : node) {
+      if (!entry.first.IsScalar()) {
+        fail(entry.first, key, "expected a key name, found " + kind(entry.first));
+      }
+      const std::string name = entry.first.as<std::string>();
+      if (!allowed.count(name)) {
+        std::string list;
+        for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        fail(entry.first, join(key, name), "unknown key; expected one of: " + list);
+      }
+    }
+  }
+
+  YAML::Node required(const YAML::Node& map, const std::string& key,
+                      const std::string& name) const {
+    const YAML::Node value = map[name];
+    if (!value) fail(map, join(key, name), "missing; add it");
+    return value;
+  }
+
+  double number(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsScalar()) fail(node, key, "expected a number, found " + kind(node));
+    double value = 0;
+    if (!YAML::convert<double>::decode(node, value)) {
+      fail(node, key, "expected a number, found '" + node.Scalar() + "'");
+    }
+    if (!std::isfinite(value)) fail(node, key, "must be a finite number, not " + node.Scalar());
+    return value;
+  }
+
+  std::string text(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsScalar()) fail(node, key, "expected a string, found " + kind(node));
+    return node.Scalar();
+  }
+
+  std::vector<double> numbers(const YAML::Node& node, const std::string& key,
+                              std::size_t count) const {
+    if (!node.IsSequence() || node.size() != count) {
+      fail(node, key,
+           "expected a list of " + std::to_string(count) + " numbers, found " + kind(node));
+    }
+    std::vector<double> values;
+    for (std::size_t i = 0; i < count; ++i) {
+      values.push_back(number(node[i], key + "[" + std::to_string(i) + "]"));
+    }
+    return values;
+  }
+
+  Eigen::Vector3d vector3(const YAML::Node& node, const std::string& key) const {
+    const std::vector<double> v = numbers(node, key, 3);
+    return Eigen::Vector3d(v[0], v[1], v[2]);
+  }
+
+  Eigen::Quaterniond quaternion(const YAML::Node& node, const std::string& key) const {
+    const std::vector<double> v = numbers(node, key, 4);
+    const Eigen::Quaterniond q(v[0], v[1], v[2], v[3]);
+    if (q.norm() < 1e-9) {
+      fail(node, key, "zero-length quaternion; give [w, x, y, z] with w = 1 for no rotation");
+    }
+    return q.normalized();
+  }
+
+  // An existing file named relative to the scene file.
+  std::string path(const YAML::Node& node, const std::string& key) const {
+    const std::string name = text(node, key);
+    const fs::path resolved = (fs::path(file_).parent_path() / name).lexically_normal();
+    if (!fs::exists(resolved)) {
+      fail(node, key,
+           "'" + resolved.string() +
+               "' does not exist; fix the path (relative to "
+               "the scene file)");
+    }
+    return resolved.string();
+  }
+
+  static std::string join(const std::string& key, const std::string& name) {
+    return key.empty() ? name : key + "." + name;
+  }
+
+ private:
+  static std::string kind(const YAML::Node& node) {
+    switch (node.Type()) {
+      case YAML::NodeType::Null:
+        return "nothing";
+      case YAML::NodeType::Scalar:
+        return "'" + node.Scalar() + "'";
+      case YAML::NodeType::Sequence:
+        return "a list of " + std::to_string(node.size());
+      case YAML::NodeType::Map:
+        return "a map";
+      default:
+        return "no value";
+    }
+  }
+
+  std::string file_;
+};
+
+Eigen::Isometry3d read_pose(const YamlReader& in, const YAML::Node& node, const std::string& key) {
+  in.expect_map(node, key, {"xyz", "quat_wxyz"});
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  if (node["xyz"]) X.translation() = in.vector3(node["xyz"], key + ".xyz");
+  if (node["quat_wxyz"]) {
+    X.linear() = in.quaternion(node["quat_wxyz"], key + ".quat_wxyz").toRotationMatrix();
+  }
+  return X;
+}
+
+void flatten_settings(const YAML::Node& node, const std::string& prefix, PlannerSettings* out) {
+  for (const auto& entry : node) {
+    const std::string key = YamlReader::join(prefix, entry.first.as<std::string>());
+    if (entry.second.IsMap()) {
+      flatten_settings(entry.second, key, out);
+      continue;
+    }
+    double value = 0;
+    if (YAML::convert<double>::decode(entry.second, value)) {
+      out->numbers[key] = value;
+    } else {
+      out->words[key] = entry.second.Scalar();
+    }
+  }
+}
+
+PlannerSettings read_planner_settings(const YamlReader& in, const YAML::Node& overrides) {
+  PlannerSettings settings;
+  flatten_settings(YAML::Load(default_planner_settings_yaml()), "", &settings);
+  if (!overrides) return settings;
+  std::function<void(const YAML::Node&, const std::string&)> apply = [&](const YAML::Node& node,
+                                                                         const std::string& key) {
+    if (!node.IsMap()) in.fail(node, key, "expected a map of settings");
+    for (const auto& entry : node) {
+      const std::string name = YamlReader::join(key, entry.first.as<std::string>());
+      const std::string setting = name.substr(std::string("planner.").size());
+      if (entry.second.IsMap()) {
+        apply(entry.second, name);
+      } else if (settings.numbers.count(setting)) {
+        settings.numbers[setting] = in.number(entry.second, name);
+      } else if (settings.words.count(setting)) {
+        settings.words[setting] = in.text(entry.second, name);
+      } else {
+        in.fail(entry.first, name, "unknown planner setting; config/planner.yaml lists them");
+      }
+    }
+  };
+  apply(overrides, "planner");
+  return settings;
+}
+
+void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
+  const std::string key = "robot";
+  in.expect_map(node, key,
+                {"mesh", "urdf", "srdf", "packages", "base", "base_pose", "planned_joints",
+                 "fixed_joints", "joint_limits"});
+  ConfigurationSpace& space = scene->space;
+  if (node["mesh"].IsDefined() == node["urdf"].IsDefined()) {
+    in.fail(node, key, "give exactly one of mesh: (a rigid robot) or urdf: (an articulated one)");
+  }
+  if (node["mesh"]) {
+    for (const char* name :
+         {"srdf", "packages", "base_pose", "planned_joints", "fixed_joints", "joint_limits"}) {
+      if (node[name]) in.fail(node[name], key + "." + name, "applies only to urdf: robots");
+    }
+    if (node["base"] && in.text(node["base"], key + ".base") != "floating") {
+      in.fail(node["base"], key + ".base", "a mesh robot is a rigid body with a floating base");
+    }
+    const std::string mesh_path = in.path(node["mesh"], key + ".mesh");
+    TriangleMesh mesh =
+        load_mesh(mesh_path, Eigen::Vector3d::Ones(), in.at(node["mesh"], key + ".mesh"));
+    scene->robot =
+        make_rigid_robot(fs::path(mesh_path).stem().string(), std::move(mesh), mesh_path);
+    space.base = BaseType::kFloating;
+    return;
+  }
+
+  PackageMap packages;
+  if (node["packages"]) {
+    const YAML::Node map = node["packages"];
+    if (!map.IsMap()) in.fail(map, key + ".packages", "expected a map of package name: folder");
+    for (const auto& entry : map) {
+      const std::string name = entry.first.as<std::string>();
+      packages[name] = in.path(entry.second, key + ".packages." + name);
+    }
+  }
+  const std::string urdf_path = in.path(node["urdf"], key + ".urdf");
+  scene->robot = load_urdf(urdf_path, packages, in.at(node["urdf"], key + ".urdf"));
+  RobotModel& robot = scene->robot;
+  if (node["srdf"]) {
+    const std::string srdf_path = in.path(node["srdf"], key + ".srdf");
+    apply_srdf(&robot, srdf_path, in.at(node["srdf"], key + ".srdf"), &scene->notices);
+  }
+
+  const std::string base = node["base"] ? in.text(node["base"], key + ".base") : "fixed";
+  if (base == "fixed") {
+    space.base = BaseType::kFixed;
+  } else if (base == "planar") {
+    space.base = BaseType::kPlanar;
+  } else if (base == "floating") {
+    space.base = BaseType::kFloating;
+  } else {
+    in.fail(node["base"], key + ".base",
+            "'" + base + "' is not a base; use fixed, planar or floating");
+  }
+  if (node["base_pose"]) {
+    if (space.base == BaseType::kFloating) {
+      in.fail(node["base_pose"], key + ".base_pose",
+              "a floating base takes its pose from the configuration");
+    }
+    space.X_SB = read_pose(in, node["base_pose"], key + ".base_pose");  // S is W until moved
+  }
+
+  const std::size_t joint_count = robot.joints.size();
+  space.fixed_positions.assign(joint_count, 0.0);
+  for (std::size_t j = 0; j < joint_count; ++j) {
+    const Joint& joint = robot.joints[j];
+    if (joint.is_single_dof()) {
+      space.fixed_positions[j] = std::min(std::max(0.0, joint.lower), joint.upper);
+    }
+  }
+
+  auto single_dof_joint = [&](const YAML::Node& name_node, const std::string& where) {
+    const std::string name = in.text(name_node, where);
+    const int j = robot.find_joint(name);
+    if (j < 0) in.fail(name_node, where, "URDF '" + urdf_path + "' has no joint '" + name + "'");
+    if (!robot.joints[j].is_single_dof()) {
+      in.fail(name_node, where,
+              "joint '" + name + "' is " + joint_type_name(robot.joints[j].type) +
+                  "; only revolute, continuous and prismatic joints take a value");
+    }
+    if (robot.joints[j].mimic_joint >= 0) {
+      in.fail(name_node, where, "joint '" + name + "' mimics another joint and follows it");
+    }
+    return j;
+  };
+
+  if (node["planned_joints"]) {
+    const YAML::Node list = node["planned_joints"];
+    if (!list.IsSequence())
+      in.fail(list, key + ".planned_joints", "expected a list of joint names");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string where = key + ".planned_joints[" + std::to_string(i) + "]";
+      const int j = single_dof_joint(list[i], where);
+      for (int planned : space.planned_joints) {
+        if (planned == j) in.fail(list[i], where, "joint listed twice");
+      }
+      space.planned_joints.push_back(j);
+      space.lower.push_back(robot.joints[j].lower);
+      space.upper.push_back(robot.joints[j].upper);
+      space.continuous.push_back(robot.joints[j].type == JointType::kContinuous);
+    }
+  }
+  if (space.planned_joints.empty() && space.base == BaseType::kFixed) {
+    in.fail(node, key,
+            "nothing to plan: list planned_joints or give the robot a planar or floating base");
+  }
+  auto planned_index = [&](int j) {
+    for (std::size_t i = 0; i < space.planned_joints.size(); ++i) {
+      if (space.planned_joints[i] == j) return static_cast<int>(i);
+    }
+    return -1;
+  };
+
+  if (node["fixed_joints"]) {
+    const YAML::Node map = node["fixed_joints"];
+    if (!map.IsMap()) in.fail(map, key + ".fixed_joints", "expected a map of joint name: value");
+    for (const auto& entry : map) {
+      const std::string where = key + ".fixed_joints." + entry.first.as<std::string>();
+      const int j = single_dof_joint(entry.first, where);
+      if (planned_index(j) >= 0)
+        in.fail(entry.first, where, "joint is planned; it cannot also be fixed");
+      const double value = in.number(entry.second, where);
+      const Joint& joint = robot.joints[j];
+      if (joint.type != JointType::kContinuous && (value < joint.lower || value > joint.upper)) {
+        std::ostringstream problem;
+        problem << value << " is outside the joint's limits [" << joint.lower << ", " << joint.upper
+                << "]";
+        in.fail(entry.second, where, problem.str());
+      }
+      space.fixed_positions[j] = value;
+    }
+  }
+
+  if (node["joint_limits"]) {
+    const YAML::Node map = node["joint_limits"];
+    if (!map.IsMap())
+      in.fail(map, key + ".joint_limits", "expected a map of joint name: [lower, upper]");
+    for (const auto& entry : map) {
+      const std::string where = key + ".joint_limits." + entry.first.as<std::string>();
+      const int j = single_dof_joint(entry.first, where);
+      const int i = planned_index(j);
+      if (i < 0) in.fail(entry.first, where, "joint is not planned; list it in planned_joints");
+      const std::vector<double> range = in.numbers(entry.second, where, 2);
+      if (range[0] > range[1]) in.fail(entry.second, where, "inverted limits: lower exceeds upper");
+      if (range[0] < space.lower[i] || range[1] > space.upper[i]) {
+        std::ostringstream problem;
+        problem << "may only narrow the URDF limits [" << space.lower[i] << ", " << space.upper[i]
+                << "]";
+        in.fail(entry.second, where, problem.str());
+      }
+      space.lower[i] = range[0];
+      space.upper[i] = range[1];
+      space.continuous[i] = false;  // narrowed: no longer wraps
+    }
+  }
+}
+
+void read_bounds(const YamlReader& in, const YAML::Node& node, ConfigurationSpace* space) {
+  if (space->base == BaseType::kFixed) {
+    if (node) in.fail(node, "bounds", "a fixed-base robot has no base bounds; remove bounds:");
+    return;
+  }
+  if (!node)
+    in.fail(node, "bounds", "missing: a moving base needs bounds: {min: [...], max: [...]}");
+  in.expect_map(node, "bounds", {"min", "max"});
+  const std::size_t count = space->base == BaseType::kFloating ? 3 : 2;
+  const std::vector<double> lo =
+      in.numbers(in.required(node, "bounds", "min"), "bounds.min", count);
+  const std::vector<double> hi =
+      in.numbers(in.required(node, "bounds", "max"), "bounds.max", count);
+  for (std::size_t k = 0; k < count; ++k) {
+    if (lo[k] >= hi[k]) {
+      std::ostringstream problem;
+      problem << "inverted or empty bounds on axis "
+              << "xyz"[k] << ": min " << lo[k] << " is not below max " << hi[k]
+              << "; swap or widen them";
+      in.fail(node["min"], "bounds.min", problem.str());
+    }
+    space->base_min[k] = lo[k];
+    space->base_max[k] = hi[k];
+  }
+}
+
+// A start or goal as the file gives it (positions in world or plane coordinates), in
+// double, checked against bounds and limits before anything is rounded.
+std::vector<double> read_configuration(const YamlReader& in, const YAML::Node& node,
+                                       const std::string& key, const Scene& scene) {
+  const ConfigurationSpace& space = scene.space;
+  const RobotModel& robot = scene.robot;
+  in.expect_map(node, key, {"base", "joints"});
+  std::vector<double> q(space.width(), 0.0);
+  if (space.base == BaseType::kFixed) {
+    if (node["base"])
+      in.fail(node["base"], key + ".base", "a fixed-base robot takes no base pose here");
+  } else {
+    const YAML::Node base = in.required(node, key, "base");
+    const std::string where = key + ".base";
+    if (space.base == BaseType::kFloating) {
+      in.expect_map(base, where, {"xyz", "quat_wxyz"});
+      const Eigen::Vector3d p = in.vector3(in.required(base, where, "xyz"), where + ".xyz");
+      const Eigen::Quaterniond r =
+          in.quaternion(in.required(base, where, "quat_wxyz"), where + ".quat_wxyz");
+      const double values[7] = {p.x(), p.y(), p.z(), r.w(), r.x(), r.y(), r.z()};
+      for (int k = 0; k < 7; ++k) q[k] = values[k];
+    } else {
+      in.expect_map(base, where, {"xy", "theta"});
+      const std::vector<double> xy = in.numbers(in.required(base, where, "xy"), where + ".xy", 2);
+      q[0] = xy[0];
+      q[1] = xy[1];
+      q[2] = in.number(in.required(base, where, "theta"), where + ".theta");
+    }
+  }
+  if (!space.planned_joints.empty()) {
+    const YAML::Node joints = in.required(node, key, "joints");
+    if (!joints.IsMap()) in.fail(joints, key + ".joints", "expected a map of joint name: value");
+    std::set<std::string> planned;
+    for (int j : space.planned_joints) planned.insert(robot.joints[j].name);
+    for (const auto& entry : joints) {
+      const std::string name = entry.first.as<std::string>();
+      if (!planned.count(name)) {
+        in.fail(entry.first, key + ".joints." + name,
+                "not a planned joint; list it in robot.planned_joints or remove it");
+      }
+    }
+    for (std::size_t i = 0; i < space.planned_joints.size(); ++i) {
+      const std::string& name = robot.joints[space.planned_joints[i]].name;
+      const YAML::Node value = in.required(joints, key + ".joints", name);
+      q[space.base_width() + i] = in.number(value, key + ".joints." + name);
+    }
+  } else if (node["joints"]) {
+    in.fail(node["joints"], key + ".joints", "the robot has no planned joints");
+  }
+  const std::string why = space.out_of_bounds_in_file_values(robot, q.data());
+  if (!why.empty()) in.fail(node, key, why + "; move it inside or widen the bounds");
+  return q;
+}
+
+void read_obstacles(const YamlReader& in, const YAML::Node& node, Scene* scene) {
+  if (!node) return;
+  if (!node.IsSequence()) in.fail(node, "obstacles", "expected a list of obstacles");
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const YAML::Node item = node[i];
+    const std::string key = "obstacles[" + std::to_string(i) + "]";
+    in.expect_map(item, key, {"name", "mesh", "box", "sphere", "cylinder", "pose", "scale"});
+    int shapes = 0;
+    for (const char* shape : {"mesh", "box", "sphere", "cylinder"})
+      shapes += item[shape].IsDefined();
+    if (shapes != 1) in.fail(item, key, "give exactly one of mesh, box, sphere, cylinder");
+    if (item["scale"] && !item["mesh"])
+      in.fail(item["scale"], key + ".scale", "scale applies to meshes only");
+    Obstacle obstacle;
+    obstacle.defined = in.at(item, key);
+    TriangleMesh mesh;
+    if (item["mesh"]) {
+      const std::string path = in.path(item["mesh"], key + ".mesh");
+      const Eigen::Vector3d scale =
+          item["scale"] ? in.vector3(item["scale"], key + ".scale") : Eigen::Vector3d::Ones();
+      if ((scale.array() == 0).any())
+        in.fail(item["scale"], key + ".scale", "a zero scale flattens the mesh");
+      mesh = load_mesh(path, scale, in.at(item["mesh"], key + ".mesh"));
+      obstacle.name = fs::path(path).stem().string();
+    } else if (item["box"]) {
+      const Eigen::Vector3d size = in.vector3(item["box"], key + ".box");
+      if ((size.array() <= 0).any())
+        in.fail(item["box"], key + ".box", "side lengths must be positive");
+      mesh = make_box(size);
+      obstacle.name = "box";
+    } else if (item["sphere"]) {
+      const double radius = in.number(item["sphere"], key + ".sphere");
+      if (radius <= 0) in.fail(item["sphere"], key + ".sphere", "the radius must be positive");
+      mesh = make_sphere(radius);
+      obstacle.name = "sphere";
+    } else {
+      const YAML::Node c = item["cylinder"];
+      in.expect_map(c, key + ".cylinder", {"radius", "length"});
+      const double radius =
+          in.number(in.required(c, key + ".cylinder", "radius"), key + ".cylinder.radius");
+      const double length =
+          in.number(in.required(c, key + ".cylinder", "length"), key + ".cylinder.length");
+      if (radius <= 0 || length <= 0)
+        in.fail(c, key + ".cylinder", "radius and length must be positive");
+      mesh = make_cylinder(radius, length);
+      obstacle.name = "cylinder";
+    }
+    if (item["name"]) obstacle.name = in.text(item["name"], key + ".name");
+    const Eigen::Isometry3d X_WO =
+        item["pose"] ? read_pose(in, item["pose"], key + ".pose") : Eigen::Isometry3d::Identity();
+    obstacle.mesh_S = transformed(mesh, X_WO);  // S is W until moved
+    scene->obstacles.push_back(std::move(obstacle));
+  }
+}
+
+// Moves the scene frame to scene_frame_origin of the scene's world bounds: obstacles,
+// bounds and base frame are made relative to it in double. A planar base's plane frame
+// also moves within its plane, to the point nearest p_WS, so that x and y stay small.
+void move_scene_frame(Scene* scene) {
+  // S is W until moved. A fixed root counts too: the frame must suit the robot as well
+  // as the obstacles (bounds_S, which sizes the band, leaves it out).
+  Eigen::AlignedBox3d bounds_W = scene->bounds_S();
+  bounds_W.extend(scene->space.base_region());
+  const Eigen::Vector3d p_WS = scene_frame_origin(bounds_W);
+  if (p_WS.isZero()) return;
+  scene->p_WS = p_WS;
+  for (Obstacle& obstacle : scene->obstacles) {
+    for (Eigen::Vector3d& p : obstacle.mesh_S.vertices) p -= p_WS;
+  }
+  ConfigurationSpace& space = scene->space;
+  const Eigen::Isometry3d X_SW(Eigen::Translation3d(-p_WS));
+  if (space.base == BaseType::kFloating) {
+    space.row_origin = p_WS;
+  } else if (space.base == BaseType::kPlanar) {
+    const Eigen::Isometry3d X_WB = space.X_SB;  // still the world's
+    space.row_origin = X_WB.inverse() * p_WS;
+    space.row_origin.z() = 0;
+    space.X_SB = X_SW * X_WB * Eigen::Translation3d(space.row_origin);
+  } else {
+    space.X_SB = X_SW * space.X_SB;
+  }
+  space.base_min -= space.row_origin;
+  space.base_max -= space.row_origin;
+  std::ostringstream notice;
+  notice << std::setprecision(12) << scene->file << ": the scene's centre lies "
+         << bounds_W.center().norm() << " m from the world origin, more than its size ("
+         << bounds_W.diagonal().norm() << " m): configuration rows (and roadmaps, OMPL states) "
+         << "are relative to the world point [" << p_WS.x() << ", " << p_WS.y() << ", " << p_WS.z()
+         << "]; path and check files give world coordinates";
+  scene->notices.push_back(notice.str());
+}
+
+}  // namespace
+
+Eigen::Vector3d scene_frame_origin(const Eigen::AlignedBox3d& bounds_W) {
+  if (bounds_W.isEmpty()) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d c = bounds_W.center();
+  const double d = bounds_W.diagonal().norm();
+  if (!(c.norm() > d) || !(d > 0)) return Eigen::Vector3d::Zero();
+  const double unit = std::pow(10.0, std::floor(std::log10(d)));
+  return (c / unit).array().round() * unit;
+}
+
+Eigen::Isometry3d Scene::X_WS() const { return Eigen::Isometry3d(Eigen::Translation3d(p_WS)); }
+
+std::size_t Scene::obstacle_triangle_count() const {
+  std::size_t count = 0;
+  for (const Obstacle& obstacle : obstacles) count += obstacle.mesh_S.triangle_count();
+  return count;
+}
+
+TriangleMesh Scene::environment_mesh() const {
+  TriangleMesh environment;
+  for (const Obstacle& obstacle : obstacles) environment.append(obstacle.mesh_S);
+  return environment;
+}
+
+Eigen::AlignedBox3d Scene::bounds_S() const {
+  Eigen::AlignedBox3d box;
+  for (const Obstacle& obstacle : obstacles) box.extend(obstacle.mesh_S.bounds());
+  if (space.base != BaseType::kFixed) box.extend(space.base_region());
+  return box;
+}
+
+Scene load_scene(const std::string& path) {
+  if (!fs::is_regular_file(path)) {
+    throw InputError({path, 0, ""}, "scene file does not exist; fix the path");
+  }
+  std::ifstream stream(path);
+  if (!stream) throw InputError({path, 0, ""}, "scene file cannot be read; check its permissions");
+  YAML::Node root;
+  try {
+    root = YAML::Load(stream);
+  } catch (const YAML::ParserException& e) {
+    throw InputError({path, e.mark.line + 1, "yaml"}, "malformed YAML: " + e.msg);
+  }
+  const YamlReader in(path);
+  Scene scene;
+  scene.file = path;
+  try {
+    in.expect_map(root, "",
+                  {"name", "description", "narrowest_passage", "robot", "obstacles", "bounds",
+                   "start", "goal", "planner"});
+    scene.name = root["name"] ? in.text(root["name"], "name") : fs::path(path).stem().string();
+    if (root["description"]) scene.description = in.text(root["description"], "description");
+    if (root["narrowest_passage"]) {
+      scene.narrowest_passage = in.text(root["narrowest_passage"], "narrowest_passage");
+    }
+    read_robot(in, in.required(root, "", "robot"), &scene);
+    read_bounds(in, root["bounds"], &scene.space);
+    read_obstacles(in, root["obstacles"], &scene);
+    scene.dropped_obstacle_triangles = drop_unreachable_obstacle_triangles(&scene);
+    move_scene_frame(&scene);
+    const YAML::Node start = in.required(root, "", "start");
+    const YAML::Node goal = in.required(root, "", "goal");
+    for (auto [node, key, row] : {std::make_tuple(start, "start", &scene.start),
+                                  std::make_tuple(goal, "goal", &scene.goal)}) {
+      const std::vector<double> values = read_configuration(in, node, key, scene);
+      row->resize(values.size());
+      scene.space.from_file_values(values.data(), row->data());
+    }
+    scene.start_defined = in.at(start, "start");
+    scene.goal_defined = in.at(goal, "goal");
+    scene.planner = read_planner_settings(in, root["planner"]);
+    const double delta_fraction = scene.planner.number("delta_fraction");
+    if (!(delta_fraction > 0 && delta_fraction <= 1e-5)) {
+      in.fail(root["planner"]["delta_fraction"], "planner.delta_fraction",
+              "must lie in (0, 1e-5]: the tolerance band may not exceed 1e-5 of the scene's size");
+    }
+    // The other numbers: each within its range (counts whole).
+    struct Range {
+      const char* key;
+      double low, high;
+      bool low_open, whole;
+      const char* what;
+    };
+    const Range ranges[] = {
+        {"time_limit_s", 0, 1e9, true, false, "must be a positive number of seconds"},
+        {"distance_weights.position", 0, 1e9, false, false, "must be 0 or more"},
+        {"distance_weights.rotation", 0, 1e9, false, false, "must be 0 or more"},
+        {"distance_weights.joint", 0, 1e9, false, false, "must be 0 or more"},
+        {"edge_resolution", 0, 1, true, false, "must lie in (0, 1]"},
+        {"max_displacement", 0, 1e9, false, false, "must be 0 (off) or a distance in metres"},
+        {"roadmap.milestones", 1, 1e8, false, true, "must be a whole number from 1 to 1e8"},
+        {"roadmap.neighbors", 1, 64, false, true, "must be a whole number from 1 to 64"},
+        {"roadmap.lazy_batch_paths", 1, 4096, false, true, "must be a whole number from 1 to 4096"},
+        {"shortcut.rounds", 0, 1000, false, true, "must be a whole number from 0 to 1000"},
+        {"shortcut.candidates", 1, 1e6, false, true, "must be a whole number from 1 to 1e6"},
+        {"sampler.rotation_spread", 0, 1e9, false, false,
+         "must be 0 (uniform rotations) or a spread in radians"},
+        {"sampler.bridge_fraction", 0, 1, false, false, "must lie in [0, 1]"},
+        {"sampler.bridge_sigma", 0, 1e9, true, false, "must be a positive distance"},
+    };
+    for (const Range& r : ranges) {
+      const double v = scene.planner.number(r.key);
+      const bool ok =
+          (r.low_open ? v > r.low : v >= r.low) && v <= r.high && (!r.whole || v == std::floor(v));
+      if (!ok) {
+        const std::string key = r.key;
+        const std::size_t dot = key.find('.');
+        const YAML::Node node = dot == std::string::npos
+                                    ? root["planner"][key]
+                                    : root["planner"][key.substr(0, dot)][key.substr(dot + 1)];
+        in.fail(node, "planner." + key, r.what);
+      }
+    }
+  } catch (const YAML::Exception& e) {
+    // A value of the wrong shape where yaml-cpp itself converts (a map key, say).
+    throw InputError({path, e.mark.line + 1, "yaml"}, e.msg + "; use plain text keys and values");
+  }
+  return scene;
+}
+
+}  // namespace gplanner

@@ -1,0 +1,397 @@
+#include "gplanner/planner/scene/urdf_loader.h"
+
+#include <console_bridge/console.h>
+#include <tinyxml2.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <set>
+#include <sstream>
+
+#include "gplanner/planner/scene/mesh_loader.h"
+
+namespace gplanner {
+namespace {
+
+namespace fs = std::filesystem;
+
+// urdfdom reports why a file fails through console_bridge; capture the first error
+// so that our message can say it. console_bridge's handler is process-global.
+class CapturingOutputHandler : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && first_error.empty()) {
+      first_error = text;
+    }
+  }
+  std::string first_error;
+};
+
+std::mutex urdf_parser_mutex;
+
+std::string read_text_file(const std::string& path, const SourceLocation& referenced_from,
+                           const std::string& what) {
+  if (!fs::is_regular_file(path)) {
+    throw InputError(referenced_from, what + " '" + path + "' does not exist; fix the path");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(referenced_from, what + " '" + path + "' cannot be read");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Line numbers of named elements (<link name=...>, <joint name=...>), for messages.
+std::map<std::string, int> element_lines(const tinyxml2::XMLDocument& doc, const char* tag) {
+  std::map<std::string, int> lines;
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  for (const tinyxml2::XMLElement* e = root ? root->FirstChildElement(tag) : nullptr; e;
+       e = e->NextSiblingElement(tag)) {
+    if (const char* name = e->Attribute("name")) lines.emplace(name, e->GetLineNum());
+  }
+  return lines;
+}
+
+Eigen::Isometry3d to_isometry(const urdf::Pose& pose) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  Eigen::Quaterniond q(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z);
+  X.linear() = q.normalized().toRotationMatrix();
+  return X;
+}
+
+JointType to_joint_type(int urdf_type) {
+  switch (urdf_type) {
+    case urdf::Joint::REVOLUTE:
+      return JointType::kRevolute;
+    case urdf::Joint::CONTINUOUS:
+      return JointType::kContinuous;
+    case urdf::Joint::PRISMATIC:
+      return JointType::kPrismatic;
+    case urdf::Joint::FLOATING:
+      return JointType::kFloating;
+    case urdf::Joint::PLANAR:
+      return JointType::kPlanar;
+    default:
+      return JointType::kFixed;
+  }
+}
+
+TriangleMesh collision_geometry(const urdf::Geometry& geometry, const std::string& urdf_folder,
+                                const PackageMap& packages, const SourceLocation& where) {
+  switch (geometry.type) {
+    case urdf::Geometry::BOX: {
+      const auto& box = static_cast<const urdf::Box&>(geometry);
+      const Eigen::Vector3d size(box.dim.x, box.dim.y, box.dim.z);
+      if (!size.allFinite() || (size.array() <= 0).any()) {
+        throw InputError(where, "box size must be positive and finite");
+      }
+      return make_box(size);
+    }
+    case urdf::Geometry::SPHERE: {
+      const double radius = static_cast<const urdf::Sphere&>(geometry).radius;
+      if (!std::isfinite(radius) || radius <= 0) {
+        throw InputError(where, "sphere radius must be positive and finite");
+      }
+      return make_sphere(radius);
+    }
+    case urdf::Geometry::CYLINDER: {
+      const auto& cylinder = static_cast<const urdf::Cylinder&>(geometry);
+      if (!std::isfinite(cylinder.radius) || !std::isfinite(cylinder.length) ||
+          cylinder.radius <= 0 || cylinder.length <= 0) {
+        throw InputError(where, "cylinder radius and length must be positive and finite");
+      }
+      return make_cylinder(cylinder.radius, cylinder.length);
+    }
+    case urdf::Geometry::MESH: {
+      const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
+      const std::string path = resolve_resource(mesh.filename, urdf_folder, packages, where);
+      return load_mesh(path, Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z), where);
+    }
+  }
+  throw InputError(where, "unsupported collision geometry");
+}
+
+}  // namespace
+
+std::string resolve_resource(const std::string& uri, const std::string& base_folder,
+                             const PackageMap& packages, const SourceLocation& where) {
+  const std::string package_prefix = "package://";
+  const std::string file_prefix = "file://";
+  if (uri.rfind(package_prefix, 0) == 0) {
+    const std::string rest = uri.substr(package_prefix.size());
+    const std::size_t slash = rest.find('/');
+    const std::string package = rest.substr(0, slash);
+    if (package.empty() || slash == std::string::npos) {
+      throw InputError(where, "malformed URI '" + uri +
+                                  "'; write package://PACKAGE/path (two slashes, then a "
+                                  "package name)");
+    }
+    const auto it = packages.find(package);
+    if (it == packages.end()) {
+      throw InputError(where, "unknown package '" + package + "' in '" + uri +
+                                  "'; map it to a folder in the scene's packages: section");
+    }
+    return (fs::path(it->second) / rest.substr(slash + 1)).lexically_normal().string();
+  }
+  if (uri.rfind(file_prefix, 0) == 0) return uri.substr(file_prefix.size());
+  if (uri.find("://") != std::string::npos) {
+    throw InputError(where, "unsupported URI scheme in '" + uri + "'; use package:// or a path");
+  }
+  return (fs::path(base_folder) / uri).lexically_normal().string();
+}
+
+namespace {
+
+// The kinematic tree's structure, checked on the XML before urdfdom reads it: urdfdom
+// gives no line numbers for these errors, and on some broken trees (cycles) leaks its
+// links.
+void check_tree(const tinyxml2::XMLDocument& doc, const std::string& path) {
+  const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
+  if (robot == nullptr) throw InputError({path, 1, "robot"}, "no <robot> element; not a URDF");
+  std::map<std::string, int> links;  // name -> line
+  for (const tinyxml2::XMLElement* link = robot->FirstChildElement("link"); link;
+       link = link->NextSiblingElement("link")) {
+    const char* name = link->Attribute("name");
+    if (name == nullptr || *name == '\0')
+      throw InputError({path, link->GetLineNum(), "link"}, "a link without a name; name it");
+    if (!links.emplace(name, link->GetLineNum()).second) {
+      throw InputError({path, link->GetLineNum(), std::string("link '") + name + "'"},
+                       "defined twice; give each link its own name");
+    }
+  }
+  if (links.empty()) throw InputError({path, robot->GetLineNum(), "robot"}, "no links; add one");
+  std::map<std::string, std::string> parent_of;  // child link -> parent link
+  for (const tinyxml2::XMLElement* joint = robot->FirstChildElement("joint"); joint;
+       joint = joint->NextSiblingElement("joint")) {
+    const char* name = joint->Attribute("name");
+    const std::string key = std::string("joint '") + (name ? name : "") + "'";
+    const int line = joint->GetLineNum();
+    std::string ends[2];
+    const char* tags[2] = {"parent", "child"};
+    for (int k = 0; k < 2; ++k) {
+      const tinyxml2::XMLElement* e = joint->FirstChildElement(tags[k]);
+      const char* link = e ? e->Attribute("link") : nullptr;
+      if (link == nullptr) {
+        throw InputError({path, line, key}, std::string("no <") + tags[k] +
+                                                " link=...>; name the " + tags[k] + " link");
+      }
+      if (!links.count(link)) {
+        throw InputError({path, line, key}, std::string(tags[k]) + " link '" + link +
+                                                "' is not defined; define it or fix the name");
+      }
+      ends[k] = link;
+    }
+    if (ends[0] == ends[1])
+      throw InputError({path, line, key}, "joins link '" + ends[0] + "' to itself");
+    if (!parent_of.emplace(ends[1], ends[0]).second) {
+      throw InputError({path, line, key}, "link '" + ends[1] +
+                                              "' is already the child of another joint; a URDF "
+                                              "is a tree, each link with one parent joint");
+    }
+  }
+  std::vector<std::string> roots;
+  for (const auto& [name, line] : links)
+    if (!parent_of.count(name)) roots.push_back(name);
+  if (roots.size() > 1) {
+    throw InputError(
+        {path, robot->GetLineNum(), "robot"},
+        "several root links ('" + roots[0] + "', '" + roots[1] + "'); join every link to one tree");
+  }
+  // With one parent per link, a link whose ancestors never reach the root lies on a
+  // cycle.
+  for (const auto& [name, line] : links) {
+    std::string at = name;
+    for (std::size_t steps = 0; parent_of.count(at); ++steps) {
+      if (steps > links.size()) {
+        throw InputError({path, line, "link '" + name + "'"},
+                         "lies on a cycle of joints; a URDF is a tree");
+      }
+      at = parent_of.at(at);
+    }
+  }
+}
+
+}  // namespace
+
+RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
+                     const SourceLocation& referenced_from) {
+  const std::string xml = read_text_file(urdf_path, referenced_from, "URDF");
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    throw InputError({urdf_path, doc.ErrorLineNum(), "xml"},
+                     std::string("not well-formed XML: ") + doc.ErrorName() + "; fix the file");
+  }
+  check_tree(doc, urdf_path);
+  const std::map<std::string, int> link_lines = element_lines(doc, "link");
+  const std::map<std::string, int> joint_lines = element_lines(doc, "joint");
+
+  urdf::ModelInterfaceSharedPtr model;
+  std::string parse_error;
+  {
+    const std::lock_guard<std::mutex> lock(urdf_parser_mutex);
+    CapturingOutputHandler handler;
+    console_bridge::useOutputHandler(&handler);
+    model = urdf::parseURDF(xml);
+    console_bridge::restorePreviousOutputHandler();
+    parse_error = handler.first_error;
+  }
+  if (!model) {
+    throw InputError(
+        {urdf_path, 0, "robot"},
+        "URDF does not parse" + (parse_error.empty() ? "" : ": " + parse_error) + "; fix the file");
+  }
+  auto line_of = [](const std::map<std::string, int>& lines, const std::string& name) {
+    const auto it = lines.find(name);
+    return it == lines.end() ? 0 : it->second;
+  };
+
+  RobotModel robot;
+  robot.name = model->getName();
+  robot.source_file = urdf_path;
+  const std::string urdf_folder = fs::path(urdf_path).parent_path().string();
+
+  // Breadth-first from the root: parents get lower indices than their children.
+  std::deque<urdf::LinkConstSharedPtr> queue{model->getRoot()};
+  std::map<std::string, int> link_index;
+  while (!queue.empty()) {
+    const urdf::LinkConstSharedPtr link = queue.front();
+    queue.pop_front();
+    const int index = static_cast<int>(robot.links.size());
+    link_index[link->name] = index;
+    Link out;
+    out.name = link->name;
+    const SourceLocation where{urdf_path, line_of(link_lines, link->name),
+                               "link '" + link->name + "' collision"};
+    for (const urdf::CollisionSharedPtr& collision : link->collision_array) {
+      if (!collision || !collision->geometry) continue;
+      out.collision.append(collision_geometry(*collision->geometry, urdf_folder, packages, where),
+                           to_isometry(collision->origin));
+    }
+    if (link->parent_joint) {
+      const urdf::Joint& j = *link->parent_joint;
+      Joint joint;
+      joint.name = j.name;
+      joint.type = to_joint_type(j.type);
+      joint.parent_link = link_index.at(j.parent_link_name);
+      joint.child_link = index;
+      joint.X_PJ = to_isometry(j.parent_to_joint_origin_transform);
+      const SourceLocation joint_where{urdf_path, line_of(joint_lines, j.name),
+                                       "joint '" + j.name + "'"};
+      if (joint.is_single_dof() || joint.type == JointType::kPlanar) {
+        const Eigen::Vector3d axis(j.axis.x, j.axis.y, j.axis.z);
+        if (!axis.allFinite() || axis.norm() < 1e-12) {
+          throw InputError(joint_where, "axis must be a non-zero finite vector");
+        }
+        joint.axis_J = axis.normalized();
+      }
+      if (joint.type == JointType::kContinuous) {
+        joint.lower = -M_PI;
+        joint.upper = M_PI;
+      } else if (j.limits && joint.is_single_dof()) {
+        joint.lower = j.limits->lower;
+        joint.upper = j.limits->upper;
+        if (!std::isfinite(joint.lower) || !std::isfinite(joint.upper) ||
+            joint.lower > joint.upper) {
+          throw InputError(joint_where, "limit lower must not exceed upper, both finite");
+        }
+      } else if (joint.is_single_dof()) {
+        throw InputError(joint_where, "a revolute or prismatic joint needs a <limit>");
+      }
+      if (j.mimic) {
+        joint.mimic_multiplier = j.mimic->multiplier;
+        joint.mimic_offset = j.mimic->offset;
+        // The master is resolved once all joints are known (it may come later).
+        joint.mimic_joint = -2;
+      }
+      out.parent_joint = static_cast<int>(robot.joints.size());
+      robot.joints.push_back(joint);
+      robot.disabled_pairs.emplace_back(joint.parent_link, joint.child_link);
+    }
+    robot.links.push_back(std::move(out));
+    for (const urdf::LinkSharedPtr& child : link->child_links) queue.push_back(child);
+  }
+  for (Joint& joint : robot.joints) {
+    if (joint.mimic_joint != -2) continue;
+    const urdf::JointConstSharedPtr j = model->getJoint(joint.name);
+    joint.mimic_joint = robot.find_joint(j->mimic->joint_name);
+    const SourceLocation where{urdf_path, line_of(joint_lines, joint.name),
+                               "joint '" + joint.name + "' mimic"};
+    if (joint.mimic_joint < 0 || !robot.joints[joint.mimic_joint].is_single_dof()) {
+      throw InputError(where, "mimics '" + j->mimic->joint_name +
+                                  "', which is not a revolute, continuous or prismatic joint "
+                                  "of this URDF");
+    }
+    if (robot.joints[joint.mimic_joint].mimic_joint != -1) {
+      throw InputError(where,
+                       "mimics a joint that itself mimics another; chain them to the "
+                       "master instead");
+    }
+  }
+  std::sort(robot.disabled_pairs.begin(), robot.disabled_pairs.end());
+  return robot;
+}
+
+int apply_srdf(RobotModel* robot, const std::string& srdf_path,
+               const SourceLocation& referenced_from, std::vector<std::string>* notices) {
+  const std::string xml = read_text_file(srdf_path, referenced_from, "SRDF");
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    throw InputError({srdf_path, doc.ErrorLineNum(), "xml"},
+                     std::string("not well-formed XML: ") + doc.ErrorName() + "; fix the file");
+  }
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  if (root == nullptr || std::string(root->Name()) != "robot") {
+    throw InputError({srdf_path, root ? root->GetLineNum() : 0, "robot"},
+                     "an SRDF has <robot> as its root element");
+  }
+  static const std::set<std::string> kCore = {"group",
+                                              "group_state",
+                                              "end_effector",
+                                              "virtual_joint",
+                                              "passive_joint",
+                                              "disable_collisions",
+                                              "disable_default_collisions",
+                                              "enable_collisions",
+                                              "link_sphere_approximation"};
+  std::set<std::string> skipped;
+  int read = 0;
+  std::set<std::pair<int, int>> pairs(robot->disabled_pairs.begin(), robot->disabled_pairs.end());
+  for (const tinyxml2::XMLElement* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    if (tag != "disable_collisions") {
+      if (!kCore.count(tag) && skipped.insert(tag).second && notices) {
+        notices->push_back(srdf_path + ":" + std::to_string(e->GetLineNum()) + ": <" + tag +
+                           "> is not part of the SRDF format gplanner reads; skipped");
+      }
+      continue;
+    }
+    const SourceLocation where{srdf_path, e->GetLineNum(), "disable_collisions"};
+    int ends[2];
+    const char* attributes[2] = {"link1", "link2"};
+    for (int k = 0; k < 2; ++k) {
+      const char* name = e->Attribute(attributes[k]);
+      if (name == nullptr) {
+        throw InputError(where, std::string("missing attribute ") + attributes[k]);
+      }
+      ends[k] = robot->find_link(name);
+      if (ends[k] < 0) {
+        throw InputError(where, std::string(attributes[k]) + " names link '" + name +
+                                    "', which URDF '" + robot->source_file +
+                                    "' does not have; fix the name or use the matching URDF");
+      }
+    }
+    ++read;
+    if (ends[0] != ends[1]) pairs.emplace(std::min(ends[0], ends[1]), std::max(ends[0], ends[1]));
+  }
+  robot->disabled_pairs.assign(pairs.begin(), pairs.end());
+  robot->srdf_file = srdf_path;
+  return read;
+}
+
+}  // namespace gplanner

@@ -1,0 +1,159 @@
+// GPU tests (names contain "Gpu"): the gpu backend, each traversal, against the cpu
+// backend on seeded batches of every shipped scene. They assert that the GPU ran and
+// skip only where there is no device.
+
+#include "gplanner/planner/checkers/gpu_checker.h"
+
+#include <gtest/gtest.h>
+
+#include "gplanner/common/gpu_device.h"
+#include "gplanner/planner/checkers/checker_comparison.h"
+#include "gplanner/planner/checkers/checker_factory.h"
+#include "gplanner/planner/checkers/cpu_checker.h"
+#include "gplanner/planner/scene/scene_collision_model.h"
+#include "planner/scene_test_support.h"
+#include "test_support.h"
+
+namespace gplanner {
+namespace {
+
+#define REQUIRE_GPU()                                                   \
+  do {                                                                  \
+    const GpuDevice device = query_gpu_device();                        \
+    if (!device.available) GTEST_SKIP() << "no GPU: " << device.reason; \
+  } while (0)
+
+struct Case {
+  std::string scene;
+  Traversal traversal;
+  bool small_batch = false;  // balanced: the whole batch a warp per body pair, no rounds
+};
+
+std::string case_name(const Case& c) {
+  return std::string(traversal_name(c.traversal)) + (c.small_batch ? "_small_batch" : "");
+}
+
+void PrintTo(const Case& c, std::ostream* out) { *out << c.scene << " " << case_name(c); }
+
+class GpuMatchesCpu : public ::testing::TestWithParam<Case> {};
+
+TEST_P(GpuMatchesCpu, OnASeededBatch) {
+  REQUIRE_GPU();
+  const Scene scene = load_scene(testing::project_root() + "/scenes/" + GetParam().scene);
+  const std::size_t n = 5000, width = scene.space.width();
+  const std::vector<float> q = testing::sample_configurations(scene, n, 23);
+  CheckerOptions options;
+  options.gpu.traversal = GetParam().traversal;
+  options.gpu.warp_per_pair_up_to = GetParam().small_batch ? n : 0;
+  std::string notice;
+  const std::unique_ptr<CollisionChecker> checker =
+      make_collision_checker(scene, "gpu", options, &notice);
+  ASSERT_EQ(checker->backend(), "gpu") << notice;
+  auto* gpu = dynamic_cast<GpuChecker*>(checker.get());
+  ASSERT_NE(gpu, nullptr);
+  std::vector<std::uint8_t> on_gpu(n), on_cpu(n);
+  gpu->check(q.data(), n, on_gpu.data());
+  EXPECT_GT(gpu->last_stats().bv_tests, 0u) << "the GPU did no work";
+  EXPECT_GT(gpu->last_stats().milliseconds, 0.0);
+  EXPECT_EQ(gpu->last_stats().warp_per_pair, GetParam().small_batch);
+  CpuChecker cpu(scene);
+  cpu.check(q.data(), n, on_cpu.data());
+  FclChecker fcl(scene);
+  const CheckerComparison c = compare_verdicts(q.data(), n, width, on_gpu.data(), on_cpu.data(),
+                                               &fcl, tolerance_delta(scene));
+  EXPECT_EQ(c.missed_collisions, 0u);
+  EXPECT_EQ(c.extra_outside_band, 0u);
+  EXPECT_LE(c.disagreements, n / 200)
+      << "GPU and CPU run the same code: they should nearly always agree";
+  std::cout << GetParam().scene << " " << case_name(GetParam()) << ": " << c.disagreements
+            << " disagreements with the cpu backend, " << gpu->last_stats().milliseconds << " ms, "
+            << gpu->last_stats().bv_tests << " BV tests, " << gpu->last_stats().triangle_tests
+            << " triangle tests on " << gpu->device_name() << "\n";
+}
+
+std::vector<Case> all_cases() {
+  std::vector<Case> cases;
+  for (const std::string& scene : testing::shipped_scene_files()) {
+    for (const Traversal t : {Traversal::kBasic, Traversal::kPacket, Traversal::kBalanced})
+      cases.push_back({scene, t});
+    cases.push_back({scene, Traversal::kBalanced, true});
+  }
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, GpuMatchesCpu, ::testing::ValuesIn(all_cases()),
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           return testing::scene_test_name(info.param.scene) + "_" +
+                                  case_name(info.param);
+                         });
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(GpuMatchesCpu);
+
+// The parameterised GPU cases above exist only if the scenes are found: run from the
+// project root or set GPLANNER_ROOT.
+TEST(GpuChecker, FindsTheShippedScenes) {
+  EXPECT_GE(testing::shipped_scene_files().size(), 7u)
+      << "scenes/ not found under " << testing::project_root();
+}
+
+TEST(GpuChecker, ChunksBatchesOverTheMemoryCap) {
+  REQUIRE_GPU();
+  const Scene scene = load_scene(testing::project_root() + "/scenes/humanoid.yaml");
+  const std::size_t n = 3000;
+  const std::vector<float> q = testing::sample_configurations(scene, n, 29);
+  for (const Case c : {Case{"", Traversal::kBasic}, Case{"", Traversal::kPacket},
+                       Case{"", Traversal::kBalanced}, Case{"", Traversal::kBalanced, true}}) {
+    GpuCheckerOptions whole, capped;
+    whole.traversal = capped.traversal = c.traversal;
+    whole.warp_per_pair_up_to = capped.warp_per_pair_up_to = c.small_batch ? n : 0;
+    capped.memory_cap_bytes = 256 * 1024;
+    GpuChecker a(scene, whole), b(scene, capped);
+    std::vector<std::uint8_t> va(n), vb(n);
+    a.check(q.data(), n, va.data());
+    b.check(q.data(), n, vb.data());
+    EXPECT_EQ(a.last_stats().chunks, 1u) << case_name(c);
+    EXPECT_GT(b.last_stats().chunks, 1u) << case_name(c);
+    EXPECT_EQ(va, vb) << case_name(c);
+  }
+}
+
+// The balanced traversal's kinematics and broad phase run a warp per query for an arm
+// with hundreds of sphere tests in batches of up to 16,384 queries, a thread per query
+// for larger batches and for a rigid body; small batches run a warp per body pair in one
+// kernel (by default up to 1,024 queries of an arm, 10 of a rigid body), larger ones in
+// rounds of tasks, whose short remainder a warp per task finishes. The verdicts of every
+// kind are compared with the cpu backend above; this asserts which kind ran.
+TEST(GpuChecker, ChoosesItsKernelsByRobotAndBatchSize) {
+  REQUIRE_GPU();
+  struct Expect {
+    std::string scene;
+    std::size_t n;
+    int root_lanes;
+    bool warp_per_pair;
+  };
+  for (const Expect& e :
+       {Expect{"pr2_base_arm.yaml", 64, 32, true}, Expect{"pr2_base_arm.yaml", 2000, 32, false},
+        Expect{"pr2_base_arm.yaml", 20000, 1, false}, Expect{"piano.yaml", 8, 1, true},
+        Expect{"piano.yaml", 32, 1, false}}) {
+    const Scene scene = load_scene(testing::project_root() + "/scenes/" + e.scene);
+    const std::vector<float> q = testing::sample_configurations(scene, e.n, 31);
+    GpuChecker gpu(scene, {});
+    std::vector<std::uint8_t> verdicts(e.n);
+    gpu.check(q.data(), e.n, verdicts.data());
+    EXPECT_EQ(gpu.last_stats().root_lanes, e.root_lanes) << e.scene << " " << e.n;
+    EXPECT_EQ(gpu.last_stats().warp_per_pair, e.warp_per_pair) << e.scene << " " << e.n;
+    // 20,000 queries of an arm leave tens of thousands of tasks after two rounds; the
+    // queue shrinks round by round until the finish kernel takes the last few thousand.
+    if (e.n == 20000) EXPECT_GT(gpu.last_stats().finished_tasks, 0u) << e.scene;
+  }
+}
+
+TEST(GpuChecker, AnswersAnEmptyBatch) {
+  REQUIRE_GPU();
+  const Scene scene = load_scene(testing::project_root() + "/scenes/helicopter.yaml");
+  GpuChecker gpu(scene, {});
+  gpu.check(nullptr, 0, nullptr);
+  EXPECT_EQ(gpu.last_stats().chunks, 0u);
+}
+
+}  // namespace
+}  // namespace gplanner

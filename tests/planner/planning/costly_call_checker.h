@@ -1,0 +1,26 @@
+#pragma once
+// The cpu backend, saying that a call costs as much as `per_call` configurations (as the
+// GPU's calls do): for tests of the planner code that batches differently on such a
+// checker.
+
+#include <string>
+
+#include "gplanner/planner/checkers/cpu_checker.h"
+
+namespace gplanner::testing {
+
+class CostlyCallChecker : public CollisionChecker {
+ public:
+  CostlyCallChecker(const Scene& scene, std::size_t per_call) : cpu_(scene), per_call_(per_call) {}
+  std::string backend() const override { return cpu_.backend(); }
+  void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override {
+    cpu_.check(configurations, n, verdicts);
+  }
+  std::size_t configurations_per_call_cost() const override { return per_call_; }
+
+ private:
+  CpuChecker cpu_;
+  std::size_t per_call_;
+};
+
+}  // namespace gplanner::testing

@@ -1,0 +1,119 @@
+// The goal distances kept up to date as edges turn invalid, against computing them again
+// from scratch, on random roadmaps in the way lazy PRM uses them.
+
+#include "gplanner/planner/planning/goal_distances.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "gplanner/planner/planning/graph_search.h"
+
+namespace gplanner {
+namespace {
+
+// `vertices` random points in the unit square, each joined to the others within
+// `radius` (a roadmap's neighbourhoods), the edges unknown or valid at random. Their
+// lengths are the distance times a random factor, so that no two ways tie (the metric of
+// two joints sums the coordinates' differences: many ways would).
+Roadmap radius_roadmap(std::mt19937* rng, std::uint32_t vertices, float radius) {
+  ConfigurationMetric metric;
+  metric.joint_count = 2;
+  std::uniform_real_distribution<float> coord(0, 1), factor(1, 1.5f);
+  std::bernoulli_distribution valid(0.3);
+  Roadmap roadmap(2);
+  for (std::uint32_t i = 0; i < vertices; ++i) {
+    const float q[] = {coord(*rng), coord(*rng)};
+    roadmap.add_vertex(q);
+  }
+  for (std::uint32_t a = 0; a < vertices; ++a) {
+    for (std::uint32_t b = a + 1; b < vertices; ++b) {
+      const float d = configuration_distance(metric, roadmap.vertex(a), roadmap.vertex(b));
+      if (d < radius)
+        roadmap.add_edge(a, b, d * factor(*rng),
+                         valid(*rng) ? EdgeState::kValid : EdgeState::kUnknown);
+    }
+  }
+  return roadmap;
+}
+
+void expect_same_costs(const std::vector<double>& kept, const std::vector<double>& fresh) {
+  ASSERT_EQ(kept.size(), fresh.size());
+  for (std::size_t v = 0; v < kept.size(); ++v) {
+    if (std::isinf(fresh[v])) {
+      EXPECT_TRUE(std::isinf(kept[v])) << "vertex " << v;
+    } else {
+      EXPECT_NEAR(kept[v], fresh[v], 1e-9 * fresh[v]) << "vertex " << v;
+    }
+  }
+}
+
+// Lazy PRM's use: the shortest path's edges and some others turn invalid, batch after
+// batch, until start and goal are apart; after each batch the kept costs are those
+// computed again, and A* led by them expands the path's vertices and few others.
+TEST(GoalDistances, StayExactWhileEdgesTurnInvalid) {
+  std::mt19937 rng(5);
+  std::size_t batches = 0, affected = 0, vertex_visits = 0, expanded = 0, on_paths = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    Roadmap roadmap = radius_roadmap(&rng, 400, 0.12f);
+    const bool valid_only = trial % 3 == 2;
+    GoalDistances kept;
+    kept.compute(roadmap, 1, valid_only);
+    std::uniform_int_distribution<std::size_t> pick_edge(0, roadmap.edge_count() - 1);
+    for (int batch = 0; batch < 200; ++batch) {
+      const GraphPath path = shortest_path(roadmap, kept.cost(), 0, 1, valid_only);
+      if (path.vertices.empty()) break;
+      expanded += path.expanded;
+      on_paths += path.vertices.size();
+      std::uniform_int_distribution<std::size_t> on_path(0, path.edges.size() - 1);
+      const std::vector<std::uint32_t> removed = {path.edges[on_path(rng)],
+                                                  static_cast<std::uint32_t>(pick_edge(rng))};
+      for (const std::uint32_t e : removed) roadmap.edge(e).state = EdgeState::kInvalid;
+      affected += kept.remove_edges(roadmap, removed);
+      vertex_visits += roadmap.vertex_count();
+      ++batches;
+      GoalDistances fresh;
+      fresh.compute(roadmap, 1, valid_only);
+      expect_same_costs(kept.cost(), fresh.cost());
+      if (HasFailure()) return;
+    }
+  }
+  EXPECT_GT(batches, 200u);
+  // Each batch searched again only part of the roadmap...
+  EXPECT_LT(affected, vertex_visits / 4);
+  // ...and the exact costs led every search along its path (ties aside).
+  EXPECT_LE(expanded, on_paths + on_paths / 20);
+}
+
+// Edges no vertex's way to the goal uses change nothing; a valid edge in the list is
+// not removed.
+TEST(GoalDistances, EdgesOffEveryWayChangeNothing) {
+  std::mt19937 rng(8);
+  Roadmap roadmap = radius_roadmap(&rng, 300, 0.15f);
+  GoalDistances kept;
+  kept.compute(roadmap, 1, false);
+  const std::vector<double> before = kept.cost();
+  const GraphPath path = shortest_path(roadmap, before, 0, 1, false);
+  ASSERT_FALSE(path.vertices.empty());
+  // Edges on no shortest way to the goal: those whose ends' costs differ by less than
+  // the edge's length (neither end reaches the goal best through the other).
+  std::vector<std::uint32_t> off_ways;
+  for (std::uint32_t e = 0; e < roadmap.edge_count(); ++e) {
+    const RoadmapEdge& edge = roadmap.edge(e);
+    if (std::fabs(before[edge.a] - before[edge.b]) < 0.9 * edge.length) off_ways.push_back(e);
+  }
+  ASSERT_GT(off_ways.size(), roadmap.edge_count() / 4);
+  for (const std::uint32_t e : off_ways) roadmap.edge(e).state = EdgeState::kInvalid;
+  // One of the path's edges in the list, still usable: not removed.
+  std::vector<std::uint32_t> listed = off_ways;
+  listed.push_back(path.edges.front());
+  EXPECT_EQ(kept.remove_edges(roadmap, listed), 0u);
+  expect_same_costs(kept.cost(), before);
+  GoalDistances fresh;
+  fresh.compute(roadmap, 1, false);
+  expect_same_costs(kept.cost(), fresh.cost());
+}
+
+}  // namespace
+}  // namespace gplanner

@@ -1,0 +1,148 @@
+// PRM and lazy PRM on the cpu backend: paths that FCL finds free at a tenth of the edge
+// resolution, the same path for the same seed, roadmaps that carry over, and the time
+// limit honoured.
+
+#include "gplanner/planner/planning/roadmap_planner.h"
+
+#include <gtest/gtest.h>
+
+#include "gplanner/planner/checkers/cpu_checker.h"
+#include "gplanner/planner/planning/scene_metric.h"
+#include "gplanner/planner/scene/scene.h"
+#include "planner/scene_test_support.h"
+#include "test_support.h"
+
+namespace gplanner {
+namespace {
+
+struct Planning {
+  explicit Planning(const std::string& name)
+      : scene(load_scene(testing::project_root() + "/scenes/" + name)),
+        checker(scene),
+        neighbors(make_neighbor_finder(make_metric(scene.space, scene.planner), "cpu")) {}
+
+  PlanResult plan(RoadmapStrategy strategy, unsigned long long seed, double limit = 300,
+                  std::size_t milestones = 0) {
+    PlanOptions options = plan_options(scene);
+    options.seed = seed;
+    if (milestones) options.milestones = milestones;
+    options.time_limit_s = limit;
+    RoadmapPlanner planner(scene, &checker, neighbors.get(), strategy, options);
+    return planner.solve(scene.start.data(), scene.goal.data());
+  }
+
+  Scene scene;
+  CpuChecker checker;
+  std::unique_ptr<NeighborFinder> neighbors;
+};
+
+TEST(RoadmapPlanner, LazyPrmFindsAFreePathAndShortensIt) {
+  Planning p("piano.yaml");
+  const PlanResult result = p.plan(RoadmapStrategy::kLazyPrm, 1);
+  ASSERT_TRUE(result.solved) << result.stop_reason;
+  EXPECT_EQ(testing::path_problem(p.scene, result.path), "");
+  EXPECT_LT(result.length, result.length_before_shortcut);
+  // Lazy: far fewer edges checked than the roadmap holds.
+  EXPECT_LT(result.edges_checked * 10, result.edges);
+  EXPECT_GT(result.times.state_checks, 0);
+  EXPECT_GT(result.times.knn, 0);
+  EXPECT_GT(result.times.edge_checks, 0);
+  EXPECT_GE(result.times.total, result.times.state_checks + result.times.knn +
+                                    result.times.edge_checks + result.times.shortcutting);
+}
+
+// Checking the next shortest paths' edges in the same batch finds the path of the same
+// length (the shortest valid one in the roadmap) in far fewer checker calls.
+TEST(RoadmapPlanner, LazyPrmBatchesTheNextShortestPaths) {
+  Planning p("humanoid.yaml");
+  PlanOptions options = plan_options(p.scene);
+  options.seed = 3;
+  options.shortcut_rounds = 0;
+  ASSERT_GT(options.lazy_batch_paths, 1);
+  PlanOptions one_path = options;
+  one_path.lazy_batch_paths = 1;
+  PlanResult results[2];
+  for (int i = 0; i < 2; ++i) {
+    RoadmapPlanner planner(p.scene, &p.checker, p.neighbors.get(), RoadmapStrategy::kLazyPrm,
+                           i == 0 ? one_path : options);
+    results[i] = planner.solve(p.scene.start.data(), p.scene.goal.data());
+    ASSERT_TRUE(results[i].solved) << results[i].stop_reason;
+    EXPECT_EQ(testing::path_problem(p.scene, results[i].path), "");
+  }
+  const PlanResult &single = results[0], &batched = results[1];
+  EXPECT_EQ(single.rounds, batched.rounds);
+  EXPECT_NEAR(batched.length, single.length, 1e-6 * single.length);
+  EXPECT_GE(batched.edges_checked, single.edges_checked);
+  EXPECT_GT(batched.searches, 0u);
+  // One batch per search, and the fine re-check, without batching; a few with it.
+  EXPECT_GE(single.edge_batches, single.searches - single.rounds);
+  EXPECT_LT(batched.edge_batches * 4, single.edge_batches)
+      << batched.edge_batches << " against " << single.edge_batches;
+}
+
+TEST(RoadmapPlanner, PrmChecksEveryEdgeAndFindsAFreePath) {
+  Planning p("pr2_base_arm.yaml");
+  const PlanResult result = p.plan(RoadmapStrategy::kPrm, 2, 300, 250);
+  ASSERT_TRUE(result.solved) << result.stop_reason;
+  EXPECT_EQ(testing::path_problem(p.scene, result.path), "");
+  EXPECT_EQ(result.edges_checked, result.edges);
+}
+
+TEST(RoadmapPlanner, SameSeedSamePathOtherSeedOtherPath) {
+  Planning p("pr2_base_arm.yaml");
+  const PlanResult a = p.plan(RoadmapStrategy::kLazyPrm, 5);
+  const PlanResult b = p.plan(RoadmapStrategy::kLazyPrm, 5);
+  const PlanResult c = p.plan(RoadmapStrategy::kLazyPrm, 6);
+  ASSERT_TRUE(a.solved && b.solved && c.solved);
+  EXPECT_EQ(a.path, b.path);
+  EXPECT_EQ(a.milestones, b.milestones);
+  EXPECT_NE(a.path, c.path);
+}
+
+TEST(RoadmapPlanner, TimeLimitStopsWithoutAPath) {
+  Planning p("piano.yaml");
+  PlanOptions options = plan_options(p.scene);
+  options.milestones = 20000;  // far more than a millisecond allows
+  options.time_limit_s = 0.001;
+  RoadmapPlanner planner(p.scene, &p.checker, p.neighbors.get(), RoadmapStrategy::kLazyPrm,
+                         options);
+  const PlanResult result = planner.solve(p.scene.start.data(), p.scene.goal.data());
+  EXPECT_FALSE(result.solved);
+  EXPECT_EQ(result.stop_reason, "time limit");
+  EXPECT_TRUE(result.path.empty());
+}
+
+TEST(RoadmapPlanner, StopConditionIsHonoured) {
+  Planning p("piano.yaml");
+  PlanOptions options = plan_options(p.scene);
+  int polls = 0;
+  options.should_stop = [&polls] { return ++polls > 2; };
+  RoadmapPlanner planner(p.scene, &p.checker, p.neighbors.get(), RoadmapStrategy::kPrm, options);
+  const PlanResult result = planner.solve(p.scene.start.data(), p.scene.goal.data());
+  EXPECT_FALSE(result.solved);
+  EXPECT_EQ(result.stop_reason, "stopped");
+}
+
+TEST(RoadmapPlanner, ASavedRoadmapIsUsedAgain) {
+  Planning p("pr2_base_arm.yaml");
+  PlanOptions options = plan_options(p.scene);
+  options.milestones = 250;
+  RoadmapPlanner first(p.scene, &p.checker, p.neighbors.get(), RoadmapStrategy::kPrm, options);
+  const PlanResult a = first.solve(p.scene.start.data(), p.scene.goal.data());
+  ASSERT_TRUE(a.solved);
+  testing::ScratchFolder scratch;
+  save_roadmap(first.roadmap(), p.scene, scratch.path() + "/r.roadmap");
+  RoadmapPlanner second(p.scene, &p.checker, p.neighbors.get(), RoadmapStrategy::kPrm, options);
+  second.set_roadmap(load_roadmap(p.scene, scratch.path() + "/r.roadmap"));
+  const PlanResult b = second.solve(p.scene.start.data(), p.scene.goal.data());
+  ASSERT_TRUE(b.solved);
+  EXPECT_EQ(testing::path_problem(p.scene, b.path), "");
+  // No new milestones: the loaded ones (plus this query's start and goal) sufficed, and
+  // only the edges of the new start and goal were checked.
+  EXPECT_EQ(b.states_checked, 0u);
+  EXPECT_EQ(b.milestones, a.milestones + 2);
+  EXPECT_LT(b.edges_checked, a.edges_checked / 10);
+}
+
+}  // namespace
+}  // namespace gplanner

@@ -39,21 +39,12 @@ def mat_apply(mesh, R, t=(0, 0, 0)):
     return Mesh(out, mesh.triangles)
 
 
-def _norm(v):
-    n = math.sqrt(sum(x * x for x in v))
-    return [x / n for x in v]
-
-
-def _cross(a, b):
-    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-
-
 def frame_z_to(d):
     """A rotation matrix whose third column is the unit vector d."""
-    d = _norm(d)
+    d = meshlib.normalize(d)
     helper = [1.0, 0.0, 0.0] if abs(d[0]) < 0.9 else [0.0, 1.0, 0.0]
-    u = _norm(_cross(helper, d))
-    w = _cross(d, u)
+    u = meshlib.normalize(meshlib.cross(helper, d))
+    w = meshlib.cross(d, u)
     return [[u[0], w[0], d[0]], [u[1], w[1], d[1]], [u[2], w[2], d[2]]]
 
 
@@ -123,57 +114,6 @@ def loft(stations, segments, exponent=2.0, axis_frame=None):
     if axis_frame is not None:
         m = mat_apply(m, axis_frame)
     return m
-
-
-def signed_volume(mesh):
-    vol = 0.0
-    V = mesh.vertices
-    for a, b, c in mesh.triangles:
-        pa, pb, pc = V[a], V[b], V[c]
-        vol += (pa[0] * (pb[1] * pc[2] - pb[2] * pc[1])
-                - pa[1] * (pb[0] * pc[2] - pb[2] * pc[0])
-                + pa[2] * (pb[0] * pc[1] - pb[1] * pc[0])) / 6.0
-    return vol
-
-
-def welded(mesh, eps=1e-6):
-    """A copy with coincident vertices merged (meshlib.box repeats corner vertices per
-    face); triangles that collapse are dropped."""
-    index, verts, remap = {}, [], []
-    for v in mesh.vertices:
-        key = tuple(int(round(x / eps)) for x in v)
-        if key not in index:
-            index[key] = len(verts)
-            verts.append(v)
-        remap.append(index[key])
-    tris = []
-    for a, b, c in mesh.triangles:
-        a, b, c = remap[a], remap[b], remap[c]
-        if len({a, b, c}) == 3:
-            tris.append((a, b, c))
-    return Mesh(verts, tris)
-
-
-def check_closed(name, mesh):
-    """Asserts (on the mesh as given: callers weld first): every directed edge appears once and its reverse once (closed,
-    consistently oriented), positive volume (outward), no degenerate triangle, no NaN."""
-    edges = {}
-    for a, b, c in mesh.triangles:
-        assert len({a, b, c}) == 3, name
-        for e in ((a, b), (b, c), (c, a)):
-            assert e not in edges, "%s: directed edge used twice %s" % (name, e)
-            edges[e] = 1
-    for (a, b) in edges:
-        assert (b, a) in edges, "%s: open edge %s" % (name, (a, b))
-    for v in mesh.vertices:
-        assert all(math.isfinite(x) for x in v), name
-    V = mesh.vertices
-    for a, b, c in mesh.triangles:
-        u = [V[b][i] - V[a][i] for i in range(3)]
-        w = [V[c][i] - V[a][i] for i in range(3)]
-        area = 0.5 * math.sqrt(sum(x * x for x in _cross(u, w)))
-        assert area > 1e-7, "%s: degenerate triangle" % name
-    assert signed_volume(mesh) > 0, "%s: inward winding" % name
 
 
 # --------------------------------------------------------------------------- helicopter
@@ -454,9 +394,10 @@ def city_parts():
 
 def main():
     heli, _ = helicopter_parts()
-    heli = [(n, welded(m)) for n, m in heli]
+    # merge the corners that box() repeats per face
+    heli = [(n, meshlib.weld(m)) for n, m in heli]
     for name, m in heli:
-        check_closed(name, m)
+        meshlib.check_closed(m, name, min_area=1e-7)
     n_heli = sum(len(m) for _, m in heli)
     lo = [min(min(v[i] for v in m.vertices) for _, m in heli) for i in range(3)]
     hi = [max(max(v[i] for v in m.vertices) for _, m in heli) for i in range(3)]
@@ -467,10 +408,9 @@ def main():
     meshlib.write_dae(DAE_PATH, heli)
 
     city = city_parts()
-    city.parts = [(n, welded(m)) for n, m in city.parts]
+    city.parts = [(n, meshlib.weld(m)) for n, m in city.parts]
     for name, m in city.parts:
-        # parts are unions of closed pieces; check each piece's edges globally
-        check_closed(name, m)
+        meshlib.check_closed(m, name, min_area=1e-7)
     n_city = sum(len(m) for _, m in city.parts)
     print("city: %d triangles in %d objects" % (n_city, len(city.parts)))
     os.makedirs(os.path.dirname(OBJ_PATH), exist_ok=True)

@@ -92,14 +92,10 @@ def tube(points, radii, segs):
     for i, p in enumerate(points):
         q0 = points[max(i - 1, 0)]
         q1 = points[min(i + 1, len(points) - 1)]
-        t = [q1[k] - q0[k] for k in range(3)]
-        ln = math.sqrt(sum(x * x for x in t))
-        t = [x / ln for x in t]
+        t = meshlib.normalize(meshlib.sub(q1, q0))
         ref = (1.0, 0.0, 0.0) if abs(t[0]) < 0.9 else (0.0, 1.0, 0.0)
-        u = (ref[1] * t[2] - ref[2] * t[1], ref[2] * t[0] - ref[0] * t[2], ref[0] * t[1] - ref[1] * t[0])
-        lu = math.sqrt(sum(x * x for x in u))
-        u = [x / lu for x in u]
-        v = (t[1] * u[2] - t[2] * u[1], t[2] * u[0] - t[0] * u[2], t[0] * u[1] - t[1] * u[0])
+        u = meshlib.normalize(meshlib.cross(ref, t))
+        v = meshlib.cross(t, u)
         ring = []
         for s in range(segs):
             th = 2 * math.pi * s / segs
@@ -123,19 +119,11 @@ def housing(radius, length, segs, axis="z", center=(0, 0, 0), step=0.025):
     triangle is long and thin."""
     n = max(1, int(math.ceil(length / step - 1e-9)))
     m = limb([(-length / 2 + length * i / n, radius, radius, 0.0, 0.0) for i in range(n + 1)], segs)
-    rpy = {"z": (0, 0, 0), "x": (0, math.pi / 2, 0), "y": (-math.pi / 2, 0, 0)}[axis]
-    return m.transformed(xyz=center, rpy=rpy)
+    return meshlib.orient(m, axis, center)
 
 
 def mirror_y(m):
     return m.transformed(scale=(1, -1, 1))
-
-
-def combine(*meshes):
-    out = Mesh()
-    for m in meshes:
-        out.add(m)
-    return out
 
 
 # ================================================================ link shapes (left side)
@@ -152,7 +140,7 @@ def pelvis_mesh():
     # buttocks behind (towards -x), two rounded lobes
     lobes = [meshlib.sphere(0.055, center=(-0.06, y, -0.06), rings=10, segments=20,
                             scale=(0.9, 1.1, 1.0)) for y in (-0.055, 0.055)]
-    return combine(body, belt, *lobes)
+    return meshlib.merge(body, belt, *lobes)
 
 
 def hip_yaw_mesh():
@@ -185,7 +173,7 @@ def thigh_mesh():
     # knee cap in front of the knee joint (z = -0.38)
     cap = meshlib.sphere(0.03, center=(0.048, 0, -0.372), rings=8, segments=16,
                          scale=(0.7, 1.0, 1.2))
-    return combine(body, cap)
+    return meshlib.merge(body, cap)
 
 
 def shin_mesh():
@@ -250,7 +238,7 @@ def foot_mesh():
                                    (0.133, 0.038, 0.009)]):
         toes.append(meshlib.sphere(r, center=(x, y, -0.062), rings=6, segments=12,
                                    scale=(1.3, 1.0, 0.9)))
-    return combine(sole, instep, *toes)
+    return meshlib.merge(sole, instep, *toes)
 
 
 def abdomen_mesh():
@@ -277,14 +265,14 @@ def chest_mesh():
     pecs = [limb([(0.125, 0.012, 0.045, 0.125, y), (0.140, 0.022, 0.055, 0.128, y),
                   (0.185, 0.020, 0.052, 0.124, y), (0.200, 0.010, 0.040, 0.118, y)], 24, n=2.5)
             for y in (-0.055, 0.055)]
-    return combine(body, pack, *pecs)
+    return meshlib.merge(body, pack, *pecs)
 
 
 def neck_mesh():
     col = limb([(-0.045, 0.046, 0.046, 0.0, 0.0), (-0.010, 0.041, 0.041, 0.0, 0.0),
                 (0.030, 0.037, 0.037, 0.0, 0.0), (0.055, 0.038, 0.038, 0.0, 0.0)], 28)
     pin = housing(0.026, 0.075, 24, axis="y", center=(0, 0, 0.06))
-    return combine(col, pin)
+    return meshlib.merge(col, pin)
 
 
 def head_mesh():
@@ -295,7 +283,7 @@ def head_mesh():
             for y in (-0.085, 0.085)]
     jaw = limb([(-0.015, 0.050, 0.050, 0.030, 0.0), (0.000, 0.060, 0.058, 0.028, 0.0),
                 (0.030, 0.066, 0.062, 0.022, 0.0)], 28, n=2.5)
-    return combine(skull, visor, jaw, *ears)
+    return meshlib.merge(skull, visor, jaw, *ears)
 
 
 def shoulder_pitch_mesh():
@@ -351,7 +339,7 @@ def hand_mesh():
     thumb = tube([(0.026, -0.006, -0.030), (0.045, -0.014, -0.042), (0.058, -0.022, -0.058),
                   (0.066, -0.028, -0.074), (0.070, -0.031, -0.086)],
                  [0.013, 0.012, 0.0105, 0.0095, 0.0075], 16)
-    return combine(palm, thumb)
+    return meshlib.merge(palm, thumb)
 
 
 def fingers_mesh():
@@ -566,9 +554,10 @@ TABLE = (2.8, -1.6, 1.40, 0.80, 0.75)   # centre x, y, length (x), depth (y), he
 
 
 def bx(x0, x1, y0, y1, z0, z1, cell=1.0):
+    """Box from (x0, y0, z0) to (x1, y1, z1), faces split into cells of at most `cell`."""
     size = (x1 - x0, y1 - y0, z1 - z0)
     div = tuple(max(1, int(math.ceil(s / cell - 1e-9))) for s in size)
-    return meshlib.box(size, center=((x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2), divisions=div)
+    return meshlib.box_between((x0, y0, z0), (x1, y1, z1), div)
 
 
 def chair(cx, cy, yaw):
@@ -754,7 +743,7 @@ BOUNDS = ((-2.5, -2.3, 0.85), (4.1, 2.3, 1.20))
 
 def standing_height(urdf, meshes, q, xy, quat):
     """Pelvis z that leaves the lowest robot vertex FOOT_CLEARANCE above the floor."""
-    pose = hg.base_pose_from((xy[0], xy[1], 0.0), quat)
+    pose = meshlib.pose((xy[0], xy[1], 0.0), quat)
     posed = hg.PosedRobot(urdf, meshes, pose, q)
     low = min(b[2] for b in posed.link_box.values())
     return round(FOOT_CLEARANCE - low, 4)
@@ -816,13 +805,6 @@ def write_scene(start_q, goal_q, start_z, goal_z, shoulder_w, height):
 
 # ================================================================ main
 
-def mesh_as_lists(m):
-    """Vertices rounded through float32, as they are read back from the STL."""
-    import struct
-    verts = [struct.unpack("<3f", struct.pack("<3f", *v)) for v in m.vertices]
-    return verts, m.triangles
-
-
 def main():
     os.makedirs(MESH_DIR, exist_ok=True)
     os.makedirs(os.path.dirname(ENV_PATH), exist_ok=True)
@@ -838,15 +820,15 @@ def main():
         total += len(meshes[link])
     write_urdf(meshes, joints)
 
-    urdf = hg.Urdf(URDF_PATH)
-    lm = urdf.collision_meshes({"gplanner_robots": os.path.join(ROOT, "robots")})
+    urdf = meshlib.Urdf(URDF_PATH)
+    lm = urdf.collision_geometry({"gplanner_robots": os.path.join(ROOT, "robots")})
 
     # SRDF: adjacent pairs, pairs touching (within DEFAULT_MARGIN) at the zero pose, never
     adjacent = [(j[1], j[2]) for j in joints]
     adj_set = {frozenset(p) for p in adjacent}
     never = never_pairs()
     never_set = {frozenset(p) for p in never}
-    zero = hg.PosedRobot(urdf, lm, hg.IDENTITY, {})
+    zero = hg.PosedRobot(urdf, lm, meshlib.IDENTITY, {})
     links = urdf.links
     cand = [(a, b) for i, a in enumerate(links) for b in links[i + 1:]
             if frozenset((a, b)) not in adj_set]

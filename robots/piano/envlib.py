@@ -4,17 +4,16 @@ walls, conservative for furniture)."""
 
 import math
 
-import geom
-from geom import Mesh, ml
+import meshlib as ml
+from meshlib import Mesh
 
 
 def box_mesh(lo, hi, cell=None):
     """Box from lo to hi; with cell (metres), faces are split into a grid of about
     cell-sized squares (a finely tessellated wall)."""
     size = [hi[i] - lo[i] for i in range(3)]
-    center = [(hi[i] + lo[i]) / 2 for i in range(3)]
     div = (1, 1, 1) if cell is None else tuple(max(1, int(round(s / cell))) for s in size)
-    return ml.box(size, center, div)
+    return ml.box_between(lo, hi, div)
 
 
 class Env:

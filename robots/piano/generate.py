@@ -24,13 +24,12 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, HERE)
+sys.path[:0] = [HERE, os.path.dirname(HERE)]
 
-import geom  # noqa: E402
 import layouts as L  # noqa: E402
+import meshlib as ml  # noqa: E402
 import passage as ps  # noqa: E402
 import piano_model as pm  # noqa: E402
-from geom import ml  # noqa: E402
 
 ENVS = os.path.join(ROOT, "scenes", "environments")
 SCENES = os.path.join(ROOT, "scenes")
@@ -57,7 +56,7 @@ def near_target(name, count, tol=0.10):
 def check_parts(parts, label):
     total = 0
     for nm, m in parts:
-        geom.components_closed(m, "%s/%s" % (label, nm))
+        ml.check_closed(m, "%s/%s" % (label, nm), min_area=1e-9)
         total += len(m.triangles)
     return total
 
@@ -75,7 +74,7 @@ def analyse(parts):
     q = ps.frame_quat(a, b, c)
     ext = ps.world_extents(V, (0, 0, 0), q)
     az = abs(a[2])
-    u, v = ps._tangents(a)
+    u, v = ps.tangents(a)
     d1 = math.radians(1.0)
     w_1deg = max(ps.width(S, [a[i] * math.cos(d1) + math.sin(d1) * (
         math.cos(t) * u[i] + math.sin(t) * v[i]) for i in range(3)])
@@ -113,9 +112,7 @@ def clear_of(parts, pose, boxes, margin):
     the smallest gap (negative: overlap) and the pair."""
     best = (1e9, None)
     for nm, m in parts:
-        pts = geom.transform_points(m.vertices, pose[0], pose[1])
-        lo = [min(p[i] for p in pts) for i in range(3)]
-        hi = [max(p[i] for p in pts) for i in range(3)]
+        lo, hi = ml.point_bounds(ml.transform(ml.pose(*pose), m.vertices))
         for bn, bl, bh in boxes:
             gap = max(max(bl[i] - hi[i], lo[i] - bh[i]) for i in range(3))
             if gap < best[0]:
@@ -131,7 +128,7 @@ def straight_line_hit(robot, start, goal, boxes, depth=0.05, n=100):
     for k in range(1, n):
         t = k / n
         p = tuple(start[0][i] + t * (goal[0][i] - start[0][i]) for i in range(3))
-        q = geom.slerp(start[1], goal[1], t)
+        q = ml.slerp(start[1], goal[1], t)
         hits = robot.vertex_inside(p, q, boxes, depth)
         if hits:
             return t, hits
@@ -147,20 +144,9 @@ def f3(v):
 
 
 def fq(q):
-    q = geom.quat_normalize(q)
+    q = ml.quat_normalize(q)
     return "[%s]" % ", ".join(("%.7f" % x).rstrip("0").rstrip(".") if abs(x) > 5e-8 else "0"
                               for x in q)
-
-
-def wrap(text, width=88, indent="  "):
-    words, lines, line = text.split(), [], indent
-    for w in words:
-        if len(line) + len(w) + 1 > width and line.strip():
-            lines.append(line.rstrip())
-            line = indent
-        line += w + " "
-    lines.append(line.rstrip())
-    return "\n".join(lines)
 
 
 def write_scene(name, description, narrow, robot, env_obj, bounds, start, goal):
@@ -171,8 +157,9 @@ def write_scene(name, description, narrow, robot, env_obj, bounds, start, goal):
             "bounds:\n  min: %s\n  max: %s\n\n"
             "start:\n  base: {xyz: %s, quat_wxyz: %s}\n"
             "goal:\n  base: {xyz: %s, quat_wxyz: %s}\n"
-            % (name, wrap(description), wrap(narrow), robot, env_obj, f3(bounds[0]),
-               f3(bounds[1]), f3(start[0]), fq(start[1]), f3(goal[0]), fq(goal[1])))
+            % (name, ml.wrap_text(description), ml.wrap_text(narrow), robot, env_obj,
+               f3(bounds[0]), f3(bounds[1]), f3(start[0]), fq(start[1]), f3(goal[0]),
+               fq(goal[1])))
     with open(path, "w") as f:
         f.write(text)
     return path
@@ -180,7 +167,7 @@ def write_scene(name, description, narrow, robot, env_obj, bounds, start, goal):
 
 def rounded_pose(pose):
     return (tuple(float(("%.4f" % x)) for x in pose[0]),
-            tuple(float("%.7f" % x) for x in geom.quat_normalize(pose[1])))
+            tuple(float("%.7f" % x) for x in ml.quat_normalize(pose[1])))
 
 
 # ---------------------------------------------------------------- main
@@ -339,7 +326,7 @@ def main():
         for name, pth in witness:
             f.write("%s:\n" % name)
             for p, q in pth:
-                q = geom.quat_normalize(q)
+                q = ml.quat_normalize(q)
                 f.write("  - [%s]\n" % ", ".join("%.7f" % x for x in tuple(p) + tuple(q)))
     log("wrote robots/piano/{piano,large_piano}.obj, witness_paths.yaml, scenes/{piano,"
         "piano_detailed,large_piano}.yaml and their environments")

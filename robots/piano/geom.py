@@ -1,18 +1,13 @@
-"""Geometry helpers of the piano family (pure Python, deterministic).
-
-Used by generate.py (mesh authoring) and check.py (validation): 2D curves and
-polygon offsets, sweeps and lathes, quaternions, mesh checks, and a triangle / box
-overlap test (separating axes) for certifying witness paths against box obstacles.
+"""Geometry of the piano family's meshes (pure Python, deterministic): 2D curves and
+polygon offsets, sweeps and lathes, and the triangle / box overlap test (separating
+axes) with which check.py certifies the witness paths. The helpers every robot uses
+(meshes, rotations, mesh checks) are in robots/meshlib.py.
 """
 
 import math
-import os
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-import meshlib as ml  # noqa: E402
-
-Mesh = ml.Mesh
+import meshlib as ml
+from meshlib import Mesh
 
 
 # ---------------------------------------------------------------- 2D curves
@@ -58,11 +53,6 @@ def spline(ctrl, n):
             i += 1
         out.append(_cr_point(*segs[i], t=min(1.0, s / lens[i])))
     return out
-
-
-def polygon_area(poly):
-    return 0.5 * sum(poly[i - 1][0] * poly[i][1] - poly[i][0] * poly[i - 1][1]
-                     for i in range(len(poly)))
 
 
 def clean_polygon(poly, min_sin=2e-3, min_len=1e-4):
@@ -224,13 +214,6 @@ def segment_cylinder(p, q, radius, segments=8):
     return c.transformed(xyz=mid, rpy=(0, pitch, yaw))
 
 
-def merge(meshes):
-    m = Mesh()
-    for x in meshes:
-        m.add(x)
-    return m
-
-
 def translate(mesh, t):
     return Mesh([(v[0] + t[0], v[1] + t[1], v[2] + t[2]) for v in mesh.vertices],
                 mesh.triangles)
@@ -244,123 +227,6 @@ def rotate_about(mesh, axis_point, R):
         out.append(tuple(R[r][0] * p[0] + R[r][1] * p[1] + R[r][2] * p[2] + axis_point[r]
                          for r in range(3)))
     return Mesh(out, mesh.triangles)
-
-
-# ---------------------------------------------------------------- checks
-
-
-def mesh_report(mesh, name="mesh"):
-    """Asserts a closed, consistently outward-oriented mesh without degenerate or NaN
-    triangles; closedness is checked on positions (boxes with face grids repeat
-    vertices). Returns (volume, min triangle area)."""
-    key = {}
-    pos = []
-    for v in mesh.vertices:
-        assert all(math.isfinite(c) for c in v), "%s: NaN/inf vertex" % name
-        k = (round(v[0], 6), round(v[1], 6), round(v[2], 6))
-        pos.append(key.setdefault(k, len(key)))
-    edges = {}
-    vol = 0.0
-    min_area = float("inf")
-    for a, b, c in mesh.triangles:
-        pa, pb, pc = mesh.vertices[a], mesh.vertices[b], mesh.vertices[c]
-        u = [pb[i] - pa[i] for i in range(3)]
-        w = [pc[i] - pa[i] for i in range(3)]
-        n = (u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0])
-        area = 0.5 * math.sqrt(sum(x * x for x in n))
-        min_area = min(min_area, area)
-        vol += (pa[0] * (pb[1] * pc[2] - pb[2] * pc[1]) - pa[1] * (pb[0] * pc[2] - pb[2] * pc[0])
-                + pa[2] * (pb[0] * pc[1] - pb[1] * pc[0])) / 6.0
-        ia, ib, ic = pos[a], pos[b], pos[c]
-        assert len({ia, ib, ic}) == 3, "%s: degenerate triangle" % name
-        for e in ((ia, ib), (ib, ic), (ic, ia)):
-            edges[e] = edges.get(e, 0) + 1
-    for (i, j), cnt in edges.items():
-        assert edges.get((j, i), 0) == cnt, "%s: open or inconsistently wound edge" % name
-    assert min_area > 1e-9, "%s: sliver triangle (area %.3g)" % (name, min_area)
-    assert vol > 0, "%s: inward-facing (volume %.6f)" % (name, vol)
-    return vol, min_area
-
-
-def components_closed(mesh, name):
-    """mesh_report per connected component (parts are unions of closed solids);
-    components are joined through shared positions. Returns the component count."""
-    key = {}
-    pos = [key.setdefault((round(v[0], 6), round(v[1], 6), round(v[2], 6)), len(key))
-           for v in mesh.vertices]
-    parent = list(range(len(key)))
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    for a, b, c in mesh.triangles:
-        ra = find(pos[a])
-        parent[find(pos[b])] = ra
-        parent[find(pos[c])] = ra
-    groups = {}
-    for t in mesh.triangles:
-        groups.setdefault(find(pos[t[0]]), []).append(t)
-    for tris in groups.values():
-        mesh_report(Mesh(mesh.vertices, tris), name)
-    return len(groups)
-
-
-# ---------------------------------------------------------------- rotations
-
-
-def quat_mul(a, b):
-    w1, x1, y1, z1 = a
-    w2, x2, y2, z2 = b
-    return (w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
-            w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-            w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
-            w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2)
-
-
-def quat_axis(axis, angle):
-    s = math.sin(angle / 2)
-    n = math.sqrt(sum(a * a for a in axis))
-    return (math.cos(angle / 2), axis[0] / n * s, axis[1] / n * s, axis[2] / n * s)
-
-
-def quat_normalize(q):
-    n = math.sqrt(sum(x * x for x in q))
-    return tuple(x / n for x in q)
-
-
-def quat_matrix(q):
-    w, x, y, z = quat_normalize(q)
-    return [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
-
-
-def slerp(a, b, t):
-    dot = sum(x * y for x, y in zip(a, b))
-    if dot < 0:
-        b = tuple(-x for x in b)
-        dot = -dot
-    if dot > 0.9999995:
-        return quat_normalize(tuple(x + t * (y - x) for x, y in zip(a, b)))
-    th = math.acos(dot)
-    sa, sb = math.sin((1 - t) * th) / math.sin(th), math.sin(t * th) / math.sin(th)
-    return tuple(sa * x + sb * y for x, y in zip(a, b))
-
-
-def quat_angle(a, b):
-    dot = abs(sum(x * y for x, y in zip(a, b)))
-    return 2 * math.acos(min(1.0, dot))
-
-
-def transform_points(points, pos, q):
-    R = quat_matrix(q)
-    r0, r1, r2 = R
-    return [(r0[0] * x + r0[1] * y + r0[2] * z + pos[0],
-             r1[0] * x + r1[1] * y + r1[2] * z + pos[1],
-             r2[0] * x + r2[1] * y + r2[2] * z + pos[2]) for x, y, z in points]
 
 
 # ---------------------------------------------------------------- triangle vs box

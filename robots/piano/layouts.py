@@ -9,7 +9,7 @@ in its best orientation.
 import math
 
 import envlib as E
-import geom
+import meshlib as ml
 
 T = 0.15            # wall thickness
 WALL_H = 2.6        # wall height (floor to ceiling)
@@ -19,13 +19,13 @@ SMALL_DOOR_H = 2.1
 
 
 def yaw_quat(deg):
-    return geom.quat_axis((0, 0, 1), math.radians(deg))
+    return ml.quat_axis((0, 0, 1), math.radians(deg))
 
 
 def upright_near(q):
     """The upright heading (0 or 180 deg) from which q is the smaller turn: the piano
     turns to it on the floor, then rolls over onto its side about its long axis."""
-    return min((geom.quat_angle(yaw_quat(d), q), d) for d in (0, 180))[1]
+    return min((ml.quat_angle(yaw_quat(d), q), d) for d in (0, 180))[1]
 
 
 def turn(pos, yaw_from, yaw_to, step=90):
@@ -233,7 +233,7 @@ def staircase(env, P, steps=14):
     # handrail: a sloped bar over the balusters, from the newel to the upper floor
     length = math.hypot(x1 - x0, WALL_H)
     pitch = math.atan2(WALL_H, x1 - x0)
-    rail = E.ml.box((length, 0.06, 0.05), (0, 0, 0)).transformed(
+    rail = ml.box((length, 0.06, 0.05), (0, 0, 0)).transformed(
         xyz=((x0 + x1) / 2 - 0.06, y0 + 0.04, WALL_H / 2 + 0.92), rpy=(0, -pitch, 0))
     lo, hi = rail.bounds()
     boxes = [_strip_bounds(rail, lo[0] + k * (hi[0] - lo[0]) / steps,

@@ -2,24 +2,15 @@
 
 A body passes a doorway of width W and height H in a thin wall by a pure translation
 across the wall exactly when its extent along the doorway's width direction is at most
-W and along its height direction at most H. smallest_passage() finds the orientation
-of least width (the height given as a limit); certify_path() checks a piecewise path
+W and along its height direction at most H. min_width_direction() finds the
+orientation of least width; certify_path() checks a piecewise path
 (linear in position, slerp in rotation) against box obstacles with a clearance margin.
 """
 
 import math
 
 import geom
-
-
-def fib_dirs(n):
-    g = math.pi * (3 - math.sqrt(5))
-    out = []
-    for i in range(n):
-        z = 1 - 2 * (i + 0.5) / n
-        r = math.sqrt(1 - z * z)
-        out.append((r * math.cos(g * i), r * math.sin(g * i), z))
-    return out
+import meshlib as ml
 
 
 def extent(points, d):
@@ -36,37 +27,29 @@ def support_points(points, ndir=1000):
     """The vertices extreme in one of ndir directions: a subset of the convex hull's
     vertices on which widths are (nearly) those of the whole body."""
     keep = set()
-    for d in fib_dirs(ndir):
+    for d in ml.fibonacci_directions(ndir):
         keep.add(max(range(len(points)),
                      key=lambda i: points[i][0] * d[0] + points[i][1] * d[1] + points[i][2] * d[2]))
     return [points[i] for i in sorted(keep)]
 
 
-def _norm(v):
-    n = math.sqrt(sum(x * x for x in v))
-    return tuple(x / n for x in v)
-
-
-def _cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def _tangents(a):
+def tangents(a):
+    """Two unit vectors perpendicular to the unit vector a and to each other."""
     t = (1.0, 0.0, 0.0) if abs(a[0]) < 0.9 else (0.0, 1.0, 0.0)
-    u = _norm(_cross(a, t))
-    return u, _cross(a, u)
+    u = ml.normalize(ml.cross(a, t))
+    return u, ml.cross(a, u)
 
 
 def min_width_direction(points):
     """Direction of least width (grid over the sphere, then a pattern search)."""
-    best = min((width(points, d), d) for d in fib_dirs(6000))
+    best = min((width(points, d), d) for d in ml.fibonacci_directions(6000))
     w, a = best
     step = 0.02
     while step > 1e-6:
         improved = False
-        u, v = _tangents(a)
+        u, v = tangents(a)
         for du, dv in ((1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1)):
-            cand = _norm(tuple(a[i] + step * (du * u[i] + dv * v[i]) for i in range(3)))
+            cand = ml.normalize(tuple(a[i] + step * (du * u[i] + dv * v[i]) for i in range(3)))
             wc = width(points, cand)
             if wc < w - 1e-12:
                 w, a, improved = wc, cand, True
@@ -81,10 +64,10 @@ def passage_frame(a, along=(0.0, 1.0, 0.0), up=(1.0, 0.0, 0.0)):
     direction c perpendicular to a and to the body axis `along` (so that the body
     travels along that axis) and signed to point along `up`, travel direction
     b = c x a. Returns (a, b, c) in body coordinates."""
-    c = _norm(_cross(a, along))
+    c = ml.normalize(ml.cross(a, along))
     if sum(c[i] * up[i] for i in range(3)) < 0:
         c = tuple(-x for x in c)
-    return a, _cross(c, a), c
+    return a, ml.cross(c, a), c
 
 
 def frame_quat(a, b, c):
@@ -103,13 +86,12 @@ def frame_quat(a, b, c):
     else:
         s = math.sqrt(1.0 + m[2][2] - m[0][0] - m[1][1]) * 2
         q = ((m[1][0] - m[0][1]) / s, (m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s)
-    q = geom.quat_normalize(q)
+    q = ml.quat_normalize(q)
     return q if q[0] >= 0 else tuple(-x for x in q)
 
 
 def world_extents(points, pos, q):
-    pts = geom.transform_points(points, pos, q)
-    return ([min(p[i] for p in pts) for i in range(3)], [max(p[i] for p in pts) for i in range(3)])
+    return ml.point_bounds(ml.transform(ml.pose(pos, q), points))
 
 
 # ---------------------------------------------------------------- certification
@@ -120,23 +102,18 @@ class Robot:
 
     def __init__(self, parts):
         self.parts = [(nm, list(m.vertices), list(m.triangles)) for nm, m in parts]
-        self.radius = max(math.sqrt(sum(x * x for x in v))
-                          for _, vs, _ in self.parts for v in vs)
+        self.radius = max(ml.norm(v) for _, vs, _ in self.parts for v in vs)
 
     def collides(self, pos, q, boxes, margin=0.0, first=True):
         """Boxes [(name, lo, hi)], grown by margin on every side. Returns the names of
         the boxes hit (robot triangle overlapping the grown box)."""
         hits = []
-        R = geom.quat_matrix(q)
-        r0, r1, r2 = R
+        T = ml.pose(pos, q)
         grown = [(nm, [lo[i] - margin for i in range(3)], [hi[i] + margin for i in range(3)])
                  for nm, lo, hi in boxes]
         for _, vs, tris in self.parts:
-            pts = [(r0[0] * x + r0[1] * y + r0[2] * z + pos[0],
-                    r1[0] * x + r1[1] * y + r1[2] * z + pos[1],
-                    r2[0] * x + r2[1] * y + r2[2] * z + pos[2]) for x, y, z in vs]
-            plo = [min(p[i] for p in pts) for i in range(3)]
-            phi = [max(p[i] for p in pts) for i in range(3)]
+            pts = ml.transform(T, vs)
+            plo, phi = ml.point_bounds(pts)
             for nm, lo, hi in grown:
                 if any(plo[i] > hi[i] or phi[i] < lo[i] for i in range(3)):
                     continue
@@ -161,9 +138,8 @@ class Robot:
         """Names of boxes that contain a robot vertex at least `depth` inside."""
         hits = set()
         for _, vs, _ in self.parts:
-            pts = geom.transform_points(vs, pos, q)
-            plo = [min(p[i] for p in pts) for i in range(3)]
-            phi = [max(p[i] for p in pts) for i in range(3)]
+            pts = ml.transform(ml.pose(pos, q), vs)
+            plo, phi = ml.point_bounds(pts)
             for nm, lo, hi in boxes:
                 if nm in hits or any(plo[i] > hi[i] - depth or phi[i] < lo[i] + depth
                                      for i in range(3)):
@@ -181,11 +157,11 @@ def path_samples(waypoints, radius, step):
     out = [waypoints[0]]
     for (p0, q0), (p1, q1) in zip(waypoints, waypoints[1:]):
         dist = math.sqrt(sum((p1[i] - p0[i]) ** 2 for i in range(3)))
-        ang = geom.quat_angle(q0, q1)
+        ang = ml.quat_angle(q0, q1)
         n = max(1, int(math.ceil((dist + radius * ang) / step)))
         for k in range(1, n + 1):
             t = k / n
-            out.append((tuple(p0[i] + t * (p1[i] - p0[i]) for i in range(3)), geom.slerp(q0, q1, t)))
+            out.append((tuple(p0[i] + t * (p1[i] - p0[i]) for i in range(3)), ml.slerp(q0, q1, t)))
     return out
 
 

@@ -8,7 +8,8 @@ the parts moved so that the origin is the centre of the bounding box.
 import math
 
 import geom
-from geom import Mesh, ml
+import meshlib as ml
+from meshlib import Mesh, box_between as box
 
 HALF_W = 0.775          # half width of the case (1.55 m)
 Z_CASE = 0.62           # underside of the case
@@ -31,7 +32,7 @@ def outline(n_curve):
     """Top view of the case: counter-clockwise polygon, front edge at Y_FRONT."""
     pts = [(-HALF_W, Y_FRONT), (HALF_W, Y_FRONT)] + geom.spline(BENT_SIDE, n_curve)
     pts = geom.clean_polygon(pts)
-    assert geom.polygon_area(pts) > 0 and geom.polygon_is_simple(pts)
+    assert ml.polygon_area(pts) > 0 and geom.polygon_is_simple(pts)
     return pts
 
 
@@ -44,12 +45,6 @@ def outline_x_at(poly, y):
             t = (y - a[1]) / (b[1] - a[1])
             best = max(best, a[0] + t * (b[0] - a[0]))
     return best
-
-
-def box(lo, hi, divisions=(1, 1, 1)):
-    size = [hi[i] - lo[i] for i in range(3)]
-    center = [(hi[i] + lo[i]) / 2 for i in range(3)]
-    return ml.box(size, center, divisions)
 
 
 def rot_y(angle):
@@ -169,7 +164,7 @@ def lyre(large):
                 t = math.pi + math.pi * k / 10
                 plate.append((px + 0.018 * math.cos(t), -0.045 + 0.018 * math.sin(t)))
             plate.append((px + 0.018, -0.045))
-            assert geom.polygon_area(plate) > 0
+            assert ml.polygon_area(plate) > 0
             m.add(ml.extrude(geom.clean_polygon(plate), 0.012, 0.070))
             m.add(ml.cylinder(0.008, 0.12, segments=12, center=(px, 0.0, 0.076), axis="y"))
         else:
@@ -184,7 +179,7 @@ def lyre(large):
                 x = sx * (0.09 + 0.05 * math.sin(math.pi * t) + 0.01 * math.sin(3 * math.pi * t))
                 pts.append((x, z))
             band = [(x - 0.017, z) for x, z in pts] + [(x + 0.017, z) for x, z in reversed(pts)]
-            if geom.polygon_area(band) < 0:
+            if ml.polygon_area(band) < 0:
                 band = list(reversed(band))
             arm = ml.extrude(geom.clean_polygon(band), 0.03, -0.015)
             # (x, y=z_lyre, z=depth) -> (x, yc - depth, z_lyre): rotate about x by +90 deg

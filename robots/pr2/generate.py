@@ -41,9 +41,7 @@ PACKAGE = "package://gplanner_robots/pr2/meshes/"
 
 
 def _ccw(poly):
-    area = sum(poly[i][0] * poly[(i + 1) % len(poly)][1] - poly[(i + 1) % len(poly)][0] * poly[i][1]
-               for i in range(len(poly)))
-    return list(poly) if area > 0 else list(reversed(poly))
+    return list(poly) if meshlib.polygon_area(poly) > 0 else list(reversed(poly))
 
 
 def rrect(x0, x1, y0, y1, r, seg=6):
@@ -103,20 +101,13 @@ def segment_box(p0, p1, width, zlo, zhi):
     return prism(poly, "z", zlo, zhi)
 
 
-def union(*pieces):
-    m = Mesh()
-    for p in pieces:
-        m.add(p)
-    return m
-
-
 # ---------------------------------------------------------------------------------------
 # Link meshes (in the link frames of the PR2 URDF)
 # ---------------------------------------------------------------------------------------
 
 
 def base_mesh():
-    return union(
+    return meshlib.merge(
         # chassis block and the bumper band around it (z = 0 is the chassis bottom,
         # 0.051 m above the floor)
         prism(rrect(-0.32, 0.32, -0.32, 0.32, 0.06, 24), "z", 0.0, 0.225),
@@ -134,7 +125,7 @@ def base_mesh():
 
 def caster_mesh():
     # caster_rotation_link frame: the wheel axle (wheels 0.0748 m radius)
-    return union(
+    return meshlib.merge(
         prism(rrect(-0.10, 0.10, -0.085, 0.085, 0.04, 10), "z", 0.128, 0.168),
         prism(rrect(-0.03, 0.03, -0.085, 0.085, 0.01, 4), "z", 0.09, 0.13),
         # fork plates outside the wheels and the axle
@@ -148,7 +139,7 @@ def caster_mesh():
 
 
 def torso_mesh():
-    return union(
+    return meshlib.merge(
         # column that slides in the base's spine housing
         prism(rrect(-0.285, -0.19, -0.17, 0.17, 0.02, 12), "z", -0.50, 0.16),
         # upper back block
@@ -164,7 +155,7 @@ def head_pan_mesh():
         ylo, yhi = sorted((s * 0.13, s * 0.158))
         bracket.append(prism(rrect(0.02, 0.116, -0.05, 0.0, 0.008, 4), "y", ylo, yhi))
         bracket.append(cyl_y(0.048, ylo, yhi, at=(0.068, 0.0), seg=48))
-    return union(
+    return meshlib.merge(
         cyl(0.11, -0.066, -0.036, "z", seg=96),
         cyl(0.06, -0.08, -0.066, "z", seg=48),
         *bracket)
@@ -172,7 +163,7 @@ def head_pan_mesh():
 
 def head_tilt_mesh():
     lenses = [cyl(0.013, 0.075, 0.092, "x", (y, 0.115), seg=32) for y in (0.06, 0.03, -0.03, -0.06)]
-    return union(
+    return meshlib.merge(
         prism(rrect(-0.18, 0.045, -0.124, 0.124, 0.02, 16), "z", 0.06, 0.155),
         prism(rrect(-0.124, 0.124, 0.05, 0.15, 0.01, 4), "x", 0.04, 0.075),   # sensor plate
         *lenses,
@@ -184,7 +175,7 @@ def head_tilt_mesh():
 
 
 def laser_tilt_mesh():
-    return union(
+    return meshlib.merge(
         prism(rrect(-0.045, 0.03, 0.06, 0.078, 0.004, 2), "z", -0.055, 0.02),
         prism(rrect(-0.045, 0.03, -0.078, -0.06, 0.004, 2), "z", -0.055, 0.02),
         prism(rrect(-0.045, -0.02, -0.06, 0.06, 0.004, 2), "z", -0.055, -0.036),
@@ -198,7 +189,7 @@ def shoulder_pan_mesh():
     # behind it (leaving room below the lift axis for the upper arm when it points down),
     # and the clevis plates carrying the shoulder lift axis at x = 0.1
     plates = [cyl_y(0.125, lo, hi, at=(0.1, 0.0), seg=64) for lo, hi in ((0.08, 0.115), (-0.115, -0.08))]
-    return union(
+    return meshlib.merge(
         cyl(0.125, -0.10, 0.13, "z", seg=128),
         cyl(0.10, -0.36, -0.10, "z", (-0.065, 0.0), seg=96),
         *plates)
@@ -216,14 +207,14 @@ def upper_arm_mesh():
     # clevis plates around the elbow flex axis at x = 0.4
     prof = arc(0.40, 0.0, 0.08, -0.5 * PI, 0.5 * PI, 32) + [(0.31, 0.07), (0.31, -0.07)]
     plates = [prism(prof, "y", lo, hi) for lo, hi in ((0.024, 0.066), (-0.066, -0.024))]
-    return union(
+    return meshlib.merge(
         cyl(0.078, 0.138, 0.32, "x", seg=128, radius_top=0.062),
         prism(rrect(-0.066, 0.066, -0.07, 0.07, 0.02, 12), "x", 0.30, 0.335),
         *plates)
 
 
 def elbow_flex_mesh():
-    return union(
+    return meshlib.merge(
         cyl_y(0.078, -0.018, 0.018, seg=64),
         cyl(0.045, 0.04, 0.092, "x", seg=48),
     )
@@ -238,7 +229,7 @@ def forearm_mesh():
     # and the clevis plates around the wrist flex axis at x = 0.321
     prof = arc(0.321, 0.0, 0.036, -0.5 * PI, 0.5 * PI, 16) + [(0.295, 0.036), (0.295, -0.036)]
     plates = [prism(prof, "y", lo, hi) for lo, hi in ((0.03, 0.056), (-0.056, -0.03))]
-    return union(
+    return meshlib.merge(
         prism(rrect(-0.06, 0.06, -0.05, 0.05, 0.025, 16), "x", 0.10, 0.245),
         prism(rrect(-0.058, 0.058, -0.05, 0.01, (0.008, 0.008, 0.025, 0.025), 16), "x", 0.235, 0.30),
         prism(rrect(-0.026, 0.026, 0.045, 0.064, 0.006, 4), "x", 0.12, 0.16),  # forearm camera
@@ -254,7 +245,7 @@ def wrist_roll_mesh():
 
 
 def palm_mesh():
-    return union(
+    return meshlib.merge(
         cyl(0.019, 0.028, 0.052, "x", seg=48),
         prism(rrect(0.05, 0.116, -0.05, 0.05, 0.014, 12), "z", -0.024, 0.024),
         prism(rrect(-0.034, 0.034, -0.02, 0.02, 0.008, 6), "x", 0.112, 0.126),
@@ -266,7 +257,7 @@ def finger_mesh():
     about x (as the real PR2 does)."""
     knee = (0.045, 0.036)
     tip = (0.09137, 0.00495)  # the finger tip joint
-    return union(
+    return meshlib.merge(
         cyl(0.011, -0.026, 0.026, "z", seg=48),
         segment_box((0.0, 0.0), knee, 0.016, -0.024, 0.024),
         cyl(0.009, -0.02, 0.02, "z", knee, seg=48),
@@ -278,7 +269,7 @@ def finger_mesh():
 def finger_tip_mesh():
     pad = [(-0.014, 0.002), (0.004, -0.0135), (0.032, -0.0135), (0.032, 0.004),
            (0.012, 0.018), (-0.014, 0.018)]
-    return union(
+    return meshlib.merge(
         prism(pad, "z", -0.011, 0.011),
         cyl(0.008, -0.011, 0.011, "z", seg=48),
     )
@@ -633,18 +624,16 @@ WALL = 0.02
 
 
 def env_parts():
-    """[(name, kind, data)]: kind "box" with (lo, hi) or "mesh" with a Mesh (convex)."""
+    """[(name, Mesh)], each part convex."""
     parts = []
 
     def box(name, lo, hi, div=(1, 1, 1)):
-        size = [b - a for a, b in zip(lo, hi)]
-        center = [(a + b) / 2 for a, b in zip(lo, hi)]
-        parts.append((name, "box", (lo, hi), meshlib.box(size, center, div)))
+        parts.append((name, meshlib.box_between(lo, hi, div)))
 
     top = prism(rrect(TABLE_X[0], TABLE_X[1], TABLE_Y[0], TABLE_Y[1], 0.03, 8), "z", *TABLE_TOP)
-    parts.append(("table_top", "mesh", None, top))
+    parts.append(("table_top", top))
     for k, (x, y) in enumerate(LEGS):
-        parts.append(("table_leg_%d" % k, "mesh", None, cyl(0.03, 0.0, TABLE_TOP[0], "z", (x, y), seg=48)))
+        parts.append(("table_leg_%d" % k, cyl(0.03, 0.0, TABLE_TOP[0], "z", (x, y), seg=48)))
     box("table_apron_far", (1.14, -0.75, 0.63), (1.16, 0.70, TABLE_TOP[0]), (1, 12, 1))
     box("table_apron_right", (0.45, -0.76, 0.63), (1.15, -0.74, TABLE_TOP[0]), (6, 1, 1))
     box("table_apron_left", (0.45, 0.69, 0.63), (1.15, 0.71, TABLE_TOP[0]), (6, 1, 1))
@@ -742,30 +731,9 @@ SCENES = {
 }
 
 
-# For robots/pr2/check.py --witness: intermediate configurations (and the joints moving
-# to reach each) that split a scene's witness search into stages.
-WITNESS_VIA = {
-    "pr2_reach": [
-        (["torso_lift_joint"] + R_ARM, {"torso_lift_joint": 0.0, **arm_dict("r", TUCK["r"])}),
-        (["torso_lift_joint"] + L_ARM, {"torso_lift_joint": 0.0,
-                                        **arm_dict("l", (1.57, 0.5, 0.0, -1.5, 0.0, -0.5, 0.0))}),
-    ],
-}
-
-
 def write_scene(path, name, sc):
     def num(v):
         return fmt(v)
-
-    def wrap(text, indent="  ", width=88):
-        words, lines, cur = text.split(), [], indent
-        for w in words:
-            if len(cur) + len(w) + 1 > width and cur.strip():
-                lines.append(cur.rstrip())
-                cur = indent
-            cur += w + " "
-        lines.append(cur.rstrip())
-        return "\n".join(lines)
 
     def jdict(d, indent):
         out = []
@@ -775,8 +743,8 @@ def write_scene(path, name, sc):
 
     y = ["# Generated by robots/pr2/generate.py; do not edit.",
          "name: %s" % name,
-         "description: >", wrap(sc["description"]),
-         "narrowest_passage: >", wrap(sc["narrowest"]),
+         "description: >", meshlib.wrap_text(sc["description"]),
+         "narrowest_passage: >", meshlib.wrap_text(sc["narrowest"]),
          "",
          "robot:",
          "  urdf: ../robots/pr2/pr2.urdf",
@@ -829,10 +797,10 @@ def main():
     parts = env_parts()
     env_path = os.path.join(ROOT, "scenes", "environments", "pr2_table_shelf.obj")
     os.makedirs(os.path.dirname(env_path), exist_ok=True)
-    meshlib.write_obj(env_path, [(n, m) for n, _, _, m in parts],
+    meshlib.write_obj(env_path, parts,
                       comment="Generated by robots/pr2/generate.py: a table and a bookshelf "
                               "for the PR2 scenes.")
-    print("environment triangles: %d (%d parts)" % (sum(len(m) for *_, m in parts), len(parts)))
+    print("environment triangles: %d (%d parts)" % (sum(len(m) for _, m in parts), len(parts)))
     for name, sc in SCENES.items():
         write_scene(os.path.join(ROOT, "scenes", name + ".yaml"), name, sc)
     print("scenes: " + ", ".join(SCENES))

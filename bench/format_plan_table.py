@@ -9,7 +9,10 @@ and the ratio of their medians (issue 5).
 A run that found no path counts at its full time (the time limit), so a median over
 runs that mostly failed is a lower bound, marked with ">".
 
-usage: bench/format_plan_table.py RUNS.jsonl [RUNS.jsonl ...]
+usage: bench/format_plan_table.py [--only TABLE[,TABLE...]] RUNS.jsonl [RUNS.jsonl ...]
+  TABLE: main (ours and OMPL's planners, each as it ends), first-path (ours less its
+  shortcutting), simplify (OMPL's followed by simplifySolution), plugin (OMPL's
+  planners with FCL and with our GPU checker); default: each one the runs allow.
 """
 import json
 import statistics
@@ -17,15 +20,26 @@ import sys
 from collections import defaultdict
 
 PLANNERS = ["ours-lazyprm", "ours-prm", "ompl-lazyprm", "ompl-prm", "ompl-rrtconnect"]
+TABLES = ["main", "first-path", "simplify", "plugin"]
 SCENES = ["piano", "large_piano", "helicopter", "humanoid", "piano_detailed", "pr2_reach",
           "pr2_base_arm"]
 
 
 def main():
-    if len(sys.argv) < 2:
+    args = sys.argv[1:]
+    only = None
+    if args and args[0] == "--only":
+        if len(args) < 2:
+            sys.exit(__doc__)
+        only = set(args[1].split(","))
+        if only - set(TABLES):
+            sys.exit("format_plan_table.py: no table named %s; the tables are %s"
+                     % (", ".join(sorted(only - set(TABLES))), ", ".join(TABLES)))
+        args = args[2:]
+    if not args:
         sys.exit(__doc__)
     runs = defaultdict(list)
-    for path in sys.argv[1:]:
+    for path in args:
         for line in open(path):
             r = json.loads(line)
             runs[(r["scene"], r["planner"])].append(r)
@@ -48,16 +62,20 @@ def main():
         return "%s%s s (%s-%s), %d/%d" % (">" if bound else "", fmt(t), fmt(min(times)),
                                          fmt(max(times)), solved, len(v))
 
-    print_ours_against_ompl(runs, median, cell)
+    tables = []  # (name, printer) of the tables these runs allow, in TABLES' order
+    if any(p in PLANNERS for _, p in runs):
+        tables.append(("main", lambda: print_ours_against_ompl(runs, median, cell)))
     if any("shortcut_seconds" in r for s in SCENES for r in runs.get((s, "ours-lazyprm"), [])):
-        print()
-        print_first_path(runs, median)
+        tables.append(("first-path", lambda: print_first_path(runs, median)))
     if any("simplify_seconds" in r for v in runs.values() for r in v):
-        print()
-        print_with_simplification(runs, median)
+        tables.append(("simplify", lambda: print_with_simplification(runs, median)))
     if any(p.endswith("@gpu") for _, p in runs):
-        print()
-        print_plugin_against_fcl(runs, median, cell)
+        tables.append(("plugin", lambda: print_plugin_against_fcl(runs, median, cell)))
+    tables = [(name, printer) for name, printer in tables if only is None or name in only]
+    for i, (_, printer) in enumerate(tables):
+        if i:
+            print()
+        printer()
 
 
 def print_ours_against_ompl(runs, median, cell):

@@ -1,0 +1,192 @@
+#!/usr/bin/env bash
+# Reproduces the tables of bench/RESULTS.md on a GPU machine: runs the programs bundled
+# by ../shared/tools/gpu-bundle and writes their raw data into OUT_DIR;
+# bench/format_tables.sh OUT_DIR then prints the Markdown tables.
+#
+# 1. On the build machine (Debian 12), from the repository root:
+#      cmake -B build -DCMAKE_CUDA_ARCHITECTURES=90 && cmake --build build -j
+#      bench/reproduce.sh --bundle [BUILD_DIR]        (BUILD_DIR: default build)
+#    --bundle packs into .gpu/ the six programs the tables use (BUILD_DIR/apps/gplan,
+#    BUILD_DIR/bench/gplanner_{plan_bench,knn_bench,peak_rates},
+#    BUILD_DIR/tests/gplanner_{tests,stability_tests}) with the real PR2 and Talos
+#    data from ../shared/data, and writes the commit to .gpu/commit ("-dirty" when
+#    tracked files differ from it). .gpu/ must travel with the checkout.
+# 2. On the GPU machine, from the repository root:
+#      bench/reproduce.sh OUT_DIR [TABLE...]
+#    TABLE (default: all of them, in this order)  files written in OUT_DIR
+#      gpu-tests  gplanner_tests, gplanner_stability_tests '*Gpu*'  gpu_tests.txt
+#      peak       the GPU's peak BV and triangle test rates          peak.json
+#      collision  the collision table: every scene, gpu basic,        table.jsonl
+#                 packet, balanced, cpu and fcl, medians of 5 calls
+#      agreement  gpu (each traversal) and cpu against fcl,           agreement.jsonl
+#                 100,000 configurations per scene
+#      plan       ours (lazy PRM, PRM) on cores 0-3 beside OMPL's     ours.jsonl,
+#                 LazyPRM, PRM, RRTConnect with FCL on the others     ompl.jsonl
+#      knn        100,000 piano milestones, k = 15: GPU, CPU, GNAT    knn.jsonl
+#      plugin     OMPL's planners with FCL beside the same planners   plugin.jsonl
+#                 with our GPU checker (PLUGIN_SCENES, default
+#                 "pr2_base_arm humanoid helicopter pr2_reach piano")
+#    Every call also writes OUT_DIR/machine.txt (GPU, driver, CPU, commit, date,
+#    tables). Progress goes to stderr. The exit status is 1 when a program failed (the
+#    other tables still run). Where one command may run at most 10 minutes, split the
+#    tables over calls as the runs in RESULTS.md were split:
+#      bench/reproduce.sh OUT_DIR gpu-tests peak collision agreement
+#      bench/reproduce.sh OUT_DIR plan knn
+#      timeout 590 bench/reproduce.sh OUT_DIR plugin
+#    (the plugin's table at 173b0cf was cut at 575 s, during the piano; what was written
+#    before the cut stays in plugin.jsonl).
+# 3. Back on the build machine: copy OUT_DIR to bench/runs/NAME/ and print the tables
+#    with bench/format_tables.sh bench/runs/NAME [TABLE...].
+#
+# GPU_BUNDLE: the bundle folder (default .gpu).
+set -euo pipefail
+
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; }
+say() { echo "[reproduce $(date +%H:%M:%S)] $*" >&2; }
+
+root=$(cd "$(dirname "$0")/.." && pwd)
+
+if [ "${1:-}" = --bundle ]; then
+  build=${2:-build}
+  cd "$root"
+  programs=(apps/gplan bench/gplanner_plan_bench bench/gplanner_knn_bench
+            bench/gplanner_peak_rates tests/gplanner_tests tests/gplanner_stability_tests)
+  # gpu-bundle takes its options before the programs.
+  ../shared/tools/gpu-bundle -d ../shared/data/moveit_resources_pr2_description \
+    -d ../shared/data/pr2_moveit_config -d ../shared/data/example-robot-data \
+    "${programs[@]/#/$build/}"
+  if commit=$(git rev-parse --short HEAD 2>/dev/null); then
+    git diff --quiet HEAD -- || commit="$commit-dirty"
+  else
+    commit=unknown
+  fi
+  echo "$commit" > .gpu/commit
+  say "bundled .gpu/ at $commit"
+  exit 0
+fi
+case ${1:-} in ''|-h|--help) usage; exit 2 ;; esac
+
+mkdir -p "$1"
+out=$(cd "$1" && pwd)
+shift
+all=(gpu-tests peak collision agreement plan knn plugin)
+tables=("$@")
+[ ${#tables[@]} -gt 0 ] || tables=("${all[@]}")
+for t in "${tables[@]}"; do
+  case " ${all[*]} " in
+    *" $t "*) ;;
+    *) echo "reproduce.sh: no table named '$t'; the tables are: ${all[*]}" >&2; exit 2 ;;
+  esac
+done
+
+cd "$root"
+bundle=${GPU_BUNDLE:-.gpu}
+bundle=$(cd "$bundle" && pwd)
+run=$bundle/run
+bin=$bundle/bin
+data=$bundle/data
+[ -x "$run" ] || { echo "reproduce.sh: no bundle at $bundle (run bench/reproduce.sh --bundle on the build machine)" >&2; exit 2; }
+export GPLANNER_SHARED_DATA=$data                # tests that read the real PR2 and Talos
+export GPLANNER_GPLAN="$run $bin/gplan"          # tests that start gplan
+cores=$(nproc)
+pin() {  # pin to cores where taskset exists
+  local c=$1
+  shift
+  if command -v taskset >/dev/null; then taskset -c "$c" "$@"; else "$@"; fi
+}
+
+{
+  nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>/dev/null || echo "no nvidia-smi"
+  lscpu | grep -E "Model name|^CPU\(s\)" || true
+  echo "commit $(cat "$bundle/commit" 2>/dev/null || echo unknown)"
+  echo "date $(date -u +%Y-%m-%dT%H:%M:%SZ)"
+  echo "tables ${tables[*]}"
+} > "$out/machine.txt"
+say "writing into $out: ${tables[*]} ($(head -1 "$out/machine.txt"); $cores CPUs)"
+
+failed=()
+gtest() {  # one test program's output between the lines format_gpu_tests.py reads
+  local program=$1 status=0
+  shift
+  echo "== program: $program $*"
+  "$run" "$bin/$program" "$@" 2>&1 || status=$?
+  echo "== exit status: $status"
+  return "$status"
+}
+collision_table() {
+  if [ -d "$data/moveit_resources_pr2_description" ]; then
+    bench/collision_table.sh -d "$data" "$run" "$bin/gplan"
+  else
+    say "no real PR2 data in $data: real_pr2 and real_talos left out"
+    bench/collision_table.sh "$run" "$bin/gplan"
+  fi
+}
+
+for t in "${tables[@]}"; do
+  say "$t"
+  case $t in
+    gpu-tests)
+      { gtest gplanner_tests --gtest_filter='*Gpu*' || failed+=("gplanner_tests")
+        gtest gplanner_stability_tests --gtest_filter='*Gpu*' || failed+=("gplanner_stability_tests")
+      } > "$out/gpu_tests.txt"
+      grep -E '^== |^\[  (PASSED|FAILED|SKIPPED) +\] [0-9]' "$out/gpu_tests.txt" >&2 || true
+      ;;
+    peak)
+      "$run" "$bin/gplanner_peak_rates" > "$out/peak.json" || failed+=("$t")
+      ;;
+    collision)
+      collision_table > "$out/table.jsonl" || failed+=("$t")
+      ;;
+    agreement)
+      AGREEMENT=1 collision_table > "$out/agreement.jsonl" || failed+=("$t")
+      ;;
+    plan)
+      # As at a9f7b2e: 10 runs of at most 60 s per planner and scene; a planner stops
+      # starting runs after BUDGET seconds (ours 60, OMPL's 120). Ours alone on cores
+      # 0-3; OMPL's single-threaded processes on the other cores, one a core.
+      if [ "$cores" -ge 6 ]; then
+        ours_cores=0-3 ompl_cores=4-$((cores - 1)) ompl_jobs=$((cores - 4))
+      else
+        say "plan: only $cores CPUs (the table was measured with 16): ours and OMPL's share them"
+        ours_cores=0-$((cores - 1)) ompl_cores=0-$((cores - 1)) ompl_jobs=$cores
+      fi
+      say "plan: ours on cores $ours_cores, OMPL's planners on cores $ompl_cores, $ompl_jobs at a time"
+      OMPL_PLANNERS="ompl-lazyprm ompl-prm ompl-rrtconnect" RUNS=10 LIMIT=60 BUDGET=120 \
+        OMPL_CORES=$ompl_cores OMPL_JOBS=$ompl_jobs \
+        bench/plan_table.sh ompl "$run" "$bin/gplanner_plan_bench" > "$out/ompl.jsonl" &
+      ompl=$!
+      RUNS=10 LIMIT=60 BUDGET=60 pin "$ours_cores" bench/plan_table.sh ours "$run" "$bin/gplanner_plan_bench" \
+        > "$out/ours.jsonl" || failed+=("plan (ours)")
+      say "plan: ours done; waiting for OMPL's planners"
+      wait "$ompl" || failed+=("plan (ompl)")
+      ;;
+    knn)
+      "$run" "$bin/gplanner_knn_bench" > "$out/knn.jsonl" || failed+=("$t")
+      ;;
+    plugin)
+      # As at 173b0cf: 10 runs of at most 30 s; the plugin's runs one after another on
+      # cores 0-1 (budget 40 s per planner and scene), OMPL's with FCL beside them on
+      # the other cores (budget 60 s).
+      scenes=${PLUGIN_SCENES:-"pr2_base_arm humanoid helicopter pr2_reach piano"}
+      if [ "$cores" -ge 4 ]; then
+        plugin_cores=0-1 ompl_cores=2-$((cores - 1)) ompl_jobs=$((cores - 2))
+      else
+        say "plugin: only $cores CPUs (the table was measured with 16): the plugin and OMPL's share them"
+        plugin_cores=0-$((cores - 1)) ompl_cores=0-$((cores - 1)) ompl_jobs=$cores
+      fi
+      say "plugin: $scenes; the plugin's runs on cores $plugin_cores, OMPL's with FCL on cores $ompl_cores"
+      SCENES=$scenes PLUGIN_SCENES=$scenes OMPL_PLANNERS="ompl-lazyprm ompl-prm ompl-rrtconnect" \
+        RUNS=10 LIMIT=30 BUDGET=60 PLUGIN_BUDGET=40 PLUGIN_CORES=$plugin_cores \
+        OMPL_CORES=$ompl_cores OMPL_JOBS=$ompl_jobs \
+        bench/plan_table.sh ompl+plugin "$run" "$bin/gplanner_plan_bench" > "$out/plugin.jsonl" \
+        || failed+=("$t")
+      ;;
+  esac
+done
+
+for f in "$out"/*; do say "$(basename "$f"): $(wc -l < "$f") lines"; done
+if [ ${#failed[@]} -gt 0 ]; then
+  say "failed: ${failed[*]}"
+  exit 1
+fi
+say "done; tables: bench/format_tables.sh $out ${tables[*]}"

@@ -793,7 +793,7 @@ def write_scene(start_q, goal_q, start_z, goal_z, shoulder_w, height):
         "\n"
         "planner:\n"
         "  # 20 neighbours, not 15: in 38 dimensions the lazy search then finds a valid path\n"
-        "  # in fewer checker calls (bench/RESULTS.md, plan times at 2d05991)\n"
+        "  # in fewer checker calls (bench/history/issue4_planning.md, plan times at 2d05991)\n"
         "  roadmap: {neighbors: 20}\n"
     ) % (height, DOOR_W, DOOR_H, WALL_T, shoulder_w, height, (DOOR_W - shoulder_w) / 2,
          DOOR_H - height - FOOT_CLEARANCE, ", ".join(pj),

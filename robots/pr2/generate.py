@@ -703,7 +703,7 @@ SCENES = {
         "goal_base": (0.0, 0.0, 0.0),
         # Uniform milestones with k = 15 rarely connect the arms' way out from under the
         # table (lazy PRM on the GPU solved 5 of 10 seeds in 60 s): bridge-test milestones
-        # fill that slot and k = 30 joins them (10 of 10 seeds, median 4 s; bench/RESULTS.md).
+        # fill that slot and k = 30 joins them (10 of 10 seeds, median 4 s; bench/history/issue4_planning.md).
         "planner": ["  roadmap: {neighbors: 30}",
                     "  sampler: {bridge_fraction: 0.5, bridge_sigma: 0.2}"],
     },

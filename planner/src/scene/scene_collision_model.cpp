@@ -2,6 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gplanner/planner/scene/forward_kinematics.h"
 
 namespace gplanner {
 namespace {
@@ -46,8 +52,108 @@ double joint_magnitude(const RobotModel& robot, const ConfigurationSpace& space,
 
 }  // namespace
 
-double tolerance_delta(const Scene& scene) {
-  return scene.planner.number("delta_fraction") * scene.bounds_S().diagonal().norm();
+ToleranceBand tolerance_band(const Scene& scene) {
+  const RobotModel& robot = scene.robot;
+  const ConfigurationSpace& space = scene.space;
+  ToleranceBand band;
+  // The scene: its obstacles, and everywhere the robot can be (a fixed base's reach
+  // too, so that a robot with no obstacle in reach still has a size).
+  Eigen::AlignedBox3d box = scene.bounds_S();
+  const Eigen::AlignedBox3d base = space.base_region();
+  const double reach = robot_reach(robot, space);
+  box.extend((base.min().array() - reach).matrix());
+  box.extend((base.max().array() + reach).matrix());
+  band.scene_size = box.diagonal().norm();
+  // The robot: its geometry at the start (any frame: only the box's size counts).
+  if (scene.start.size() == static_cast<std::size_t>(space.width())) {
+    std::vector<double> positions(robot.joints.size());
+    space.joint_positions(robot, scene.start.data(), positions.data());
+    std::vector<Eigen::Isometry3d> X_RL;
+    forward_kinematics(robot, Eigen::Isometry3d::Identity(), positions.data(), &X_RL);
+    Eigen::AlignedBox3d robot_box;
+    for (std::size_t l = 0; l < robot.links.size(); ++l) {
+      for (const Eigen::Vector3d& p : robot.links[l].collision.vertices)
+        robot_box.extend(X_RL[l] * p);
+    }
+    if (!robot_box.isEmpty()) band.robot_size = robot_box.diagonal().norm();
+  }
+  band.delta = scene.planner.number("delta_fraction") * band.scene_size;
+  if (band.robot_size > 0 && kRobotBandFraction * band.robot_size < band.delta) {
+    band.delta = kRobotBandFraction * band.robot_size;
+    band.capped = true;
+  }
+  return band;
+}
+
+double tolerance_delta(const Scene& scene) { return tolerance_band(scene).delta; }
+
+double largest_representable_coordinate(double delta) {
+  return delta / 16 * 16777216.0;  // 2^24
+}
+
+void check_band_representable(const Scene& scene, const SourceLocation& robot_at,
+                              const SourceLocation& bounds_at) {
+  const ToleranceBand band = tolerance_band(scene);
+  const double limit = largest_representable_coordinate(band.delta);
+  const auto metres = [](double v) {
+    std::ostringstream text;
+    text << std::setprecision(3) << v << " m";
+    return text.str();
+  };
+  const std::string why =
+      "float cannot place it within the tolerance band, " + metres(band.delta) +
+      (band.capped ? " (1e-3 of the robot's size)" : " (delta_fraction of the scene's size)") +
+      ", which allows at most " + metres(limit);
+  // Sizes first: an absurd obstacle or robot also moves the scene frame and everything
+  // else far from it.
+  for (const Obstacle& obstacle : scene.obstacles) {
+    const double size = obstacle.mesh_S.bounds().diagonal().norm();
+    if (!(size <= limit)) {
+      throw InputError(obstacle.defined, "obstacle '" + obstacle.name + "' spans " + metres(size) +
+                                             ": " + why +
+                                             "; check its scale, or cut it to the region the "
+                                             "robot can reach");
+    }
+  }
+  const RobotModel& robot = scene.robot;
+  const double reach = robot_reach(robot, scene.space);
+  if (!(reach <= limit)) {
+    throw InputError(robot_at, "the robot reaches " + metres(reach) + " from its root: " + why +
+                                   "; check its mesh scales and its prismatic joints' limits");
+  }
+  // A revolute joint's angle rounds to 2^-24 of itself in float, and moves the robot's
+  // points by that times their distance, at most the reach.
+  for (std::size_t j = 0; j < robot.joints.size(); ++j) {
+    const JointType type = robot.joints[j].type;
+    if (type != JointType::kRevolute && type != JointType::kContinuous) continue;
+    const double angle = joint_magnitude(robot, scene.space, static_cast<int>(j));
+    if (!(angle * reach <= limit)) {
+      std::ostringstream text;
+      text << "joint '" << robot.joints[j].name << "' turns to " << std::setprecision(3) << angle
+           << " rad, where float rounds the robot's points (up to " << metres(reach)
+           << " away) by more than the tolerance band allows (" << metres(band.delta)
+           << "); give it limits within a few turns";
+      throw InputError(robot_at, text.str());
+    }
+  }
+  // Positions: everything within `limit` of the scene frame's origin.
+  for (const Obstacle& obstacle : scene.obstacles) {
+    double farthest = 0;
+    for (const Eigen::Vector3d& p : obstacle.mesh_S.vertices)
+      farthest = std::max(farthest, p.norm());
+    if (!(farthest <= limit)) {
+      throw InputError(obstacle.defined, "obstacle '" + obstacle.name + "' lies " +
+                                             metres(farthest) + " from the scene's centre: " + why +
+                                             "; cut it to the region the robot can reach");
+    }
+  }
+  const Eigen::AlignedBox3d base = scene.space.base_region();
+  const double farthest = std::max(base.min().norm(), base.max().norm()) + reach;
+  if (!(farthest <= limit)) {
+    throw InputError(bounds_at, "the robot can reach " + metres(farthest) +
+                                    " from the scene's centre: " + why +
+                                    "; give bounds around the region the robot works in");
+  }
 }
 
 double robot_reach(const RobotModel& robot, const ConfigurationSpace& space) {

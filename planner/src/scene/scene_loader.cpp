@@ -596,6 +596,7 @@ Scene load_scene(const std::string& path) {
       in.fail(root["planner"]["delta_fraction"], "planner.delta_fraction",
               "must lie in (0, 1e-5]: the tolerance band may not exceed 1e-5 of the scene's size");
     }
+    check_band_representable(scene, in.at(root["robot"], "robot"), in.at(root["bounds"], "bounds"));
     // The other numbers: each within its range (counts whole).
     struct Range {
       const char* key;

@@ -7,9 +7,32 @@
 
 namespace gplanner {
 
-// The tolerance band delta of a scene, in metres: delta_fraction times the diagonal of
-// its bounds (see DESIGN.md).
+// The tolerance band of a scene (docs/design.md, "The tolerance band"): delta is
+// delta_fraction (at most 1e-5) of the scene's size, and never more than
+// kRobotBandFraction of the robot's own size, so that it is small and finite in every
+// scene (a fixed-base robot with no obstacle in reach, a large floor, generous bounds).
+struct ToleranceBand {
+  double delta = 0;       // metres
+  double scene_size = 0;  // diagonal of the box of the obstacles and of everywhere the
+                          // robot can reach, in the scene frame
+  double robot_size = 0;  // diagonal of the box of the robot's geometry at the start
+  bool capped = false;    // the robot's size set delta
+};
+constexpr double kRobotBandFraction = 1e-3;
+ToleranceBand tolerance_band(const Scene& scene);
 double tolerance_delta(const Scene& scene);
+
+// How far from the scene frame's origin a coordinate may lie for a band of `delta`:
+// where float rounds (2^-24 relative) to at most delta / 16, so that the leaf test's
+// threshold, delta / 2, covers eight such roundings of poses and vertices.
+double largest_representable_coordinate(double delta);
+
+// Throws InputError when a magnitude of the scene is one that float (and so the cpu and
+// gpu backends) cannot hold within its band: an obstacle or the robot too large, a
+// revolute joint turned too far, or the robot or an obstacle too far from the scene
+// frame's origin. robot_at and bounds_at: where the scene gives the robot and bounds.
+void check_band_representable(const Scene& scene, const SourceLocation& robot_at,
+                              const SourceLocation& bounds_at);
 
 CollisionModel build_collision_model(const Scene& scene);
 

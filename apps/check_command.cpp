@@ -15,6 +15,7 @@
 #include "command_line.h"
 #include "gplanner/planner/checkers/checker_comparison.h"
 #include "gplanner/planner/checkers/checker_factory.h"
+#include "gplanner/planner/checkers/collision_report.h"
 #include "gplanner/planner/checkers/gpu_checker.h"
 #include "gplanner/planner/output/atomic_file.h"
 #include "gplanner/planner/scene/scene.h"
@@ -96,7 +97,7 @@ int run_check(int argc, char** argv) {
   const CommandLine args(argc, argv, 2,
                          {"n", "seed", "backend", "traversal", "compare", "threads",
                           "memory-cap-mb", "small-batch", "out", "repeat"},
-                         {"json"});
+                         {"json", "pairs"});
   if (args.positionals().size() != 1) throw UsageError("gplan check takes one scene file");
   const std::string scene_file = args.positionals()[0];
   const std::size_t n = static_cast<std::size_t>(args.count("n", 10000));
@@ -126,6 +127,8 @@ int run_check(int argc, char** argv) {
 
   // Refuse an output file that cannot be written before doing the work, not after.
   const std::string out = args.text("out", "");
+  if (args.flag("pairs") && out.empty())
+    throw UsageError("--pairs adds the colliding pair to each row of --out FILE; add --out");
   if (!out.empty()) {
     const std::filesystem::path folder = std::filesystem::path(out).parent_path();
     if (std::filesystem::is_directory(out) ||
@@ -236,6 +239,19 @@ int run_check(int argc, char** argv) {
     // a double's digits, since nine would not place a position within the band.
     const int position_precision = scene.p_WS.isZero() ? 9 : 17;
     std::vector<double> values(width);
+    // --pairs: per colliding row, the pair FCL finds colliding (a link, then an obstacle's
+    // key or a second link), "- -" for a free row; a row our backend reports colliding
+    // within the band, where FCL finds no contact, gets the closest pair and "(band)".
+    std::vector<std::string> pair_columns;
+    if (args.flag("pairs")) {
+      gplanner::CollisionReporter reporter(scene);
+      pair_columns.assign(n, "- -");
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!verdicts[i]) continue;
+        const gplanner::CollisionPair pair = reporter.first_pair(&q[i * width]);
+        pair_columns[i] = pair.a_key + " " + pair.b_key + (pair.found ? "" : " (band)");
+      }
+    }
     gplanner::write_file_atomically(out, [&](std::ostream& stream) {
       for (std::size_t i = 0; i < n; ++i) {
         space.to_file_values(&q[i * width], values.data());
@@ -244,7 +260,9 @@ int run_check(int argc, char** argv) {
           stream << std::setprecision(position ? position_precision : 9)
                  << (position ? values[k] : q[i * width + k]) << ' ';
         }
-        stream << int(verdicts[i]) << '\n';
+        stream << int(verdicts[i]);
+        if (!pair_columns.empty()) stream << ' ' << pair_columns[i];
+        stream << '\n';
       }
     });
     std::cout << "wrote       " << out << "\n";

@@ -227,6 +227,48 @@ TEST_F(GplanCheck, StartInCollisionFailsNamingTheScene) {
       << run.output;
 }
 
+// --pairs names what collides: two cubes far apart, each colliding row must name the
+// one on its side (x < 0: obstacles[0], x > 0: obstacles[1]), every free row "- -".
+TEST_F(GplanCheck, PairsNameTheObstacleEachRowHits) {
+  std::string text = kScene;
+  text.replace(text.find("  - box: [2, 2, 2]\n"), 18,
+               "  - box: [1, 1, 1]\n    pose: {xyz: [-1.2, 0, 0]}\n"
+               "  - box: [1, 1, 1]\n    pose: {xyz: [1.2, 0, 0]}\n");
+  text.replace(text.find("[-1.8, 0, 0]"), 12, "[0, 1.2, 0.8]");
+  text.replace(text.find("[1.8, 0, 0]"), 11, "[0, -1.2, 0.8]");
+  const std::string scene = folder_.write("pairs.yaml", text);
+  const std::string rows = folder_.path() + "/rows.txt";
+  const CommandResult run =
+      run_gplan("check " + shell_quoted(scene) + " --n 400 --backend cpu --out " +
+                shell_quoted(rows) + " --pairs");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::ifstream in(rows);
+  std::string line;
+  int colliding = 0, lines = 0;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::vector<std::string> f;
+    for (std::string field; fields >> field;) f.push_back(field);
+    ASSERT_EQ(f.size(), static_cast<std::size_t>(kWidth + 3)) << line;
+    ++lines;
+    const double x = std::stod(f[0]);
+    if (f[kWidth] == "0") {
+      EXPECT_EQ(f[kWidth + 1] + " " + f[kWidth + 2], "- -") << line;
+      continue;
+    }
+    ++colliding;
+    EXPECT_EQ(f[kWidth + 2], x < 0 ? "obstacles[0]" : "obstacles[1]") << line;
+  }
+  EXPECT_EQ(lines, 400);
+  EXPECT_GT(colliding, 10);
+}
+
+TEST_F(GplanCheck, PairsNeedOut) {
+  const CommandResult run = check("--n 10 --pairs");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("--pairs adds the colliding pair"), std::string::npos) << run.output;
+}
+
 TEST_F(GplanCheck, UnknownOptionIsAUsageError) {
   const CommandResult run = check("--n 10 --bogus 3");
   EXPECT_EQ(run.exit_code, 2) << run.output;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include "gplanner/planner/checkers/collision_report.h"
 #include "gplanner/planner/scene/scene.h"
 
 namespace gplanner {
@@ -13,10 +14,14 @@ void check_start_and_goal(const Scene& scene, CollisionChecker* checker) {
   const std::vector<float>* q[2] = {&scene.start, &scene.goal};
   for (int k = 0; k < 2; ++k) {
     if (checker->in_collision(q[k]->data())) {
+      const CollisionPair pair = CollisionReporter(scene).first_pair(q[k]->data());
+      const std::string which =
+          pair.found ? pair.describe() + " collide"
+                     : "within the tolerance band: FCL finds no contact, " + pair.describe();
       throw InputError(*where[k], std::string(what[k]) + " configuration is in collision (" +
-                                      checker->backend() +
-                                      " backend); move it clear of the obstacles and of the "
-                                      "robot's own links");
+                                      checker->backend() + " backend): " + which +
+                                      "; move it clear of the obstacles and of the robot's "
+                                      "own links");
     }
   }
 }

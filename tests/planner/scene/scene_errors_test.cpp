@@ -736,7 +736,8 @@ TEST_F(SceneErrors, StartInCollision) {
                         {scene_file,
                          line_of(text, "xyz: [0.2, 0, 0]"),
                          "start",
-                         {"start configuration is in collision", "fcl"}}));
+                         {"start configuration is in collision", "fcl",
+                          "and obstacle 'box' (obstacles[0]) collide"}}));
 }
 
 TEST_F(SceneErrors, GoalInSelfCollision) {
@@ -750,9 +751,12 @@ TEST_F(SceneErrors, GoalInSelfCollision) {
   ASSERT_EQ(scene.robot.checked_pairs().size(), 1u);
   FclChecker checker(scene, 1);
   EXPECT_FALSE(checker.in_collision(scene.start.data()));
-  EXPECT_TRUE(FailsWith(
-      [&] { check_start_and_goal(scene, &checker); },
-      {scene_file, line_of(text, "drop: -0.5"), "goal", {"goal configuration is in collision"}}));
+  EXPECT_TRUE(
+      FailsWith([&] { check_start_and_goal(scene, &checker); },
+                {scene_file,
+                 line_of(text, "drop: -0.5"),
+                 "goal",
+                 {"goal configuration is in collision", "link 'base' and link 'link2' collide"}}));
 
   // The same goal is accepted once the SRDF disables the pair.
   write("arm.srdf",

@@ -45,8 +45,11 @@ struct FclChecker::Impl {
   std::shared_ptr<Bvh> environment_bvh;
   std::vector<int> links_with_geometry;
   std::vector<std::pair<int, int>> checked_pairs;
+  // Made in the constructor, and copied for each new workspace: FCL's constructor of a
+  // collision object writes its geometry's local box, which other threads read.
+  Workspace prototype;
   // Taken by each chunk of a call, so that calls from any number of threads run at once.
-  ScratchPool<Workspace> workspaces{[this] { return make_workspace(); }};
+  ScratchPool<Workspace> workspaces{[this] { return copy_of_prototype(); }};
 
   // FCL sees the scene frame S (Scene::p_WS), as our collision core does, so the two
   // are compared like for like. It stays the ground truth: S is the world translated by
@@ -68,19 +71,28 @@ struct FclChecker::Impl {
     const TriangleMesh environment = scene.environment_mesh();
     if (!environment.empty()) environment_bvh = build_bvh(environment);
     checked_pairs = robot.checked_pairs();
-  }
-
-  std::unique_ptr<Workspace> make_workspace() const {
-    auto w = std::make_unique<Workspace>();
-    w->links.resize(scene.robot.links.size());
+    prototype.links.resize(robot.links.size());
     for (int l : links_with_geometry) {
-      w->links[l] = std::make_unique<fcl::CollisionObjectd>(link_bvhs[l]);
+      prototype.links[l] = std::make_unique<fcl::CollisionObjectd>(link_bvhs[l]);
     }
     if (environment_bvh) {
-      w->environment = std::make_unique<fcl::CollisionObjectd>(environment_bvh);
-      w->environment->computeAABB();
+      prototype.environment = std::make_unique<fcl::CollisionObjectd>(environment_bvh);
+      prototype.environment->computeAABB();
     }
-    w->joint_positions.resize(scene.robot.joints.size());
+    prototype.joint_positions.resize(robot.joints.size());
+  }
+
+  // Copies only read the prototype (and the shared BVHs' reference counts).
+  std::unique_ptr<Workspace> copy_of_prototype() const {
+    auto w = std::make_unique<Workspace>();
+    w->links.resize(prototype.links.size());
+    for (int l : links_with_geometry) {
+      w->links[l] = std::make_unique<fcl::CollisionObjectd>(*prototype.links[l]);
+    }
+    if (prototype.environment) {
+      w->environment = std::make_unique<fcl::CollisionObjectd>(*prototype.environment);
+    }
+    w->joint_positions = prototype.joint_positions;
     return w;
   }
 

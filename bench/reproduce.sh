@@ -50,7 +50,8 @@ if [ "${1:-}" = --bundle ]; then
   build=${2:-build}
   cd "$root"
   programs=(apps/gplan bench/gplanner_plan_bench bench/gplanner_knn_bench
-            bench/gplanner_peak_rates tests/gplanner_tests tests/gplanner_stability_tests)
+            bench/gplanner_peak_rates bench/gplanner_thread_scaling tests/gplanner_tests
+            tests/gplanner_stability_tests)
   # gpu-bundle takes its options before the programs.
   ../shared/tools/gpu-bundle -d ../shared/data/moveit_resources_pr2_description \
     -d ../shared/data/pr2_moveit_config -d ../shared/data/example-robot-data \

@@ -1,6 +1,7 @@
 #include "gplanner/collision_gpu/cpu_batch_checker.h"
 
-#include <vector>
+#include <atomic>
+#include <mutex>
 
 #include "gplanner/collision_gpu/detail/query.h"
 #include "gplanner/collision_gpu/model_view.h"
@@ -12,10 +13,11 @@ struct CpuBatchChecker::Impl {
   FlatCollisionModel model;
   CollisionModelView view;
   int threads;
-  std::vector<detail::TraversalCounts> counts;  // per thread
+  std::mutex counts_mutex;
+  detail::TraversalCounts last_counts;  // of the last call to finish
 
   Impl(const CollisionModel& m, int requested)
-      : model(m), view(model.view()), threads(resolve_thread_count(requested)), counts(threads) {}
+      : model(m), view(model.view()), threads(resolve_thread_count(requested)) {}
 };
 
 CpuBatchChecker::CpuBatchChecker(const CollisionModel& model, int threads)
@@ -25,33 +27,33 @@ CpuBatchChecker::~CpuBatchChecker() = default;
 
 void CpuBatchChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts) {
   Impl& impl = *impl_;
-  for (detail::TraversalCounts& c : impl.counts) c = {};
+  // This call's counts (calls from other threads run at once), published when it ends.
+  std::atomic<unsigned long long> bv_tests{0}, triangle_tests{0};
   const std::size_t width = impl.view.width;
-  parallel_for(n, impl.threads, [&](std::size_t begin, std::size_t end, int thread) {
+  parallel_for(n, impl.threads, [&](std::size_t begin, std::size_t end, int) {
     detail::Xf X_WL[detail::kMaxLinks];
-    // Counted on this thread's stack, added to its total once per chunk: the totals of
-    // several threads share a cache line, and counting there in every test made the
-    // threads wait on each other's writes.
+    // Counted on this thread's stack, added to the call's totals once per chunk: counting
+    // in shared totals in every test made the threads wait on each other's writes.
     detail::TraversalCounts counts;
     for (std::size_t i = begin; i < end; ++i) {
       verdicts[i] =
           detail::query_collides(impl.view, configurations + i * width, X_WL, &counts) ? 1 : 0;
     }
-    impl.counts[thread].bv_tests += counts.bv_tests;
-    impl.counts[thread].triangle_tests += counts.triangle_tests;
+    bv_tests += counts.bv_tests;
+    triangle_tests += counts.triangle_tests;
   });
+  const std::lock_guard<std::mutex> lock(impl.counts_mutex);
+  impl.last_counts = {bv_tests.load(), triangle_tests.load()};
 }
 
 unsigned long long CpuBatchChecker::bv_tests() const {
-  unsigned long long total = 0;
-  for (const detail::TraversalCounts& c : impl_->counts) total += c.bv_tests;
-  return total;
+  const std::lock_guard<std::mutex> lock(impl_->counts_mutex);
+  return impl_->last_counts.bv_tests;
 }
 
 unsigned long long CpuBatchChecker::triangle_tests() const {
-  unsigned long long total = 0;
-  for (const detail::TraversalCounts& c : impl_->counts) total += c.triangle_tests;
-  return total;
+  const std::lock_guard<std::mutex> lock(impl_->counts_mutex);
+  return impl_->last_counts.triangle_tests;
 }
 
 }  // namespace gplanner

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -31,7 +32,10 @@ struct GpuBatchChecker::Impl {
   CollisionModelView view{};
   std::string device_name;
   std::size_t memory_cap = 0;
-  GpuCheckStats stats;
+  std::mutex mutex;     // one call on the device at a time: the buffers below are shared
+  GpuCheckStats stats;  // the call in progress, under `mutex`
+  std::mutex stats_mutex;
+  GpuCheckStats last_stats;  // of the last call to finish, under `stats_mutex`
 
   DeviceBuffer<LinkKinematics> links;
   DeviceBuffer<BodyRange> link_bodies;
@@ -142,10 +146,16 @@ GpuBatchChecker::GpuBatchChecker(const CollisionModel& model, const GpuCheckerOp
 GpuBatchChecker::~GpuBatchChecker() = default;
 
 void GpuBatchChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts) {
+  const std::lock_guard<std::mutex> lock(impl_->mutex);
   impl_->check(configurations, n, verdicts);
+  const std::lock_guard<std::mutex> stats_lock(impl_->stats_mutex);
+  impl_->last_stats = impl_->stats;
 }
 
-const GpuCheckStats& GpuBatchChecker::last_stats() const { return impl_->stats; }
+GpuCheckStats GpuBatchChecker::last_stats() const {
+  const std::lock_guard<std::mutex> lock(impl_->stats_mutex);
+  return impl_->last_stats;
+}
 
 std::string GpuBatchChecker::device_name() const { return impl_->device_name; }
 

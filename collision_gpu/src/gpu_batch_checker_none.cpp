@@ -19,7 +19,7 @@ void GpuBatchChecker::check(const float*, std::size_t, std::uint8_t*) {
   throw std::runtime_error("gplanner was built without CUDA");
 }
 
-const GpuCheckStats& GpuBatchChecker::last_stats() const { return impl_->stats; }
+GpuCheckStats GpuBatchChecker::last_stats() const { return impl_->stats; }
 
 std::string GpuBatchChecker::device_name() const { return ""; }
 

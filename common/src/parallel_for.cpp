@@ -4,14 +4,33 @@
 #include <atomic>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
 namespace gplanner {
+namespace {
+
+// Helper threads running for all parallel_for calls of the process together.
+std::atomic<int> g_helpers{0};
+
+// Takes up to `wanted` helpers while the total stays within `limit`; returns how many.
+int reserve_helpers(int wanted, int limit) {
+  int running = g_helpers.load();
+  for (;;) {
+    const int take = std::max(0, std::min(wanted, limit - running));
+    if (take == 0) return 0;
+    if (g_helpers.compare_exchange_weak(running, running + take)) return take;
+  }
+}
+
+}  // namespace
 
 int resolve_thread_count(int requested) {
   if (requested > 0) return requested;
-  return std::max(1u, std::thread::hardware_concurrency());
+  // Asked once: it is a query to the system, and small calls ask in every loop.
+  static const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return hardware;
 }
 
 void parallel_for(std::size_t n, int threads,
@@ -19,10 +38,17 @@ void parallel_for(std::size_t n, int threads,
                   std::size_t grain) {
   if (n == 0) return;
   threads = std::max(1, std::min<int>(threads, static_cast<int>((n + grain - 1) / grain)));
-  if (threads == 1) {
+  const int helpers =
+      threads == 1 ? 0
+                   : reserve_helpers(threads - 1, std::max(resolve_thread_count(0), threads) - 1);
+  if (helpers == 0) {
     body(0, n, 0);
     return;
   }
+  struct Release {
+    int count;
+    ~Release() { g_helpers -= count; }
+  } release{helpers};
   std::atomic<std::size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
@@ -40,7 +66,12 @@ void parallel_for(std::size_t n, int threads,
     }
   };
   std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker, t);
+  pool.reserve(helpers);
+  try {
+    for (int t = 1; t <= helpers; ++t) pool.emplace_back(worker, t);
+  } catch (const std::system_error&) {
+    // Fewer threads than asked for: those started and the caller do the whole loop.
+  }
   worker(0);
   for (std::thread& thread : pool) thread.join();
   if (error) std::rethrow_exception(error);

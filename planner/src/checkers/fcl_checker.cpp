@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "gplanner/common/parallel_for.h"
+#include "gplanner/common/scratch_pool.h"
 #include "gplanner/planner/scene/forward_kinematics.h"
 
 namespace gplanner {
@@ -26,8 +27,8 @@ std::shared_ptr<Bvh> build_bvh(const TriangleMesh& mesh) {
   return bvh;
 }
 
-// What one thread needs to answer queries: its own collision objects (FCL objects
-// carry their pose) over the shared, read-only BVHs.
+// What one call needs to answer queries on one thread: its own collision objects (FCL
+// objects carry their pose) over the shared, read-only BVHs.
 struct Workspace {
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> links;  // null for links without geometry
   std::unique_ptr<fcl::CollisionObjectd> environment;
@@ -44,7 +45,11 @@ struct FclChecker::Impl {
   std::shared_ptr<Bvh> environment_bvh;
   std::vector<int> links_with_geometry;
   std::vector<std::pair<int, int>> checked_pairs;
-  std::vector<Workspace> workspaces;
+  // Made in the constructor, and copied for each new workspace: FCL's constructor of a
+  // collision object writes its geometry's local box, which other threads read.
+  Workspace prototype;
+  // Taken by each chunk of a call, so that calls from any number of threads run at once.
+  ScratchPool<Workspace> workspaces{[this] { return copy_of_prototype(); }};
 
   // FCL sees the scene frame S (Scene::p_WS), as our collision core does, so the two
   // are compared like for like. It stays the ground truth: S is the world translated by
@@ -66,18 +71,29 @@ struct FclChecker::Impl {
     const TriangleMesh environment = scene.environment_mesh();
     if (!environment.empty()) environment_bvh = build_bvh(environment);
     checked_pairs = robot.checked_pairs();
-    workspaces.resize(threads);
-    for (Workspace& w : workspaces) {
-      w.links.resize(robot.links.size());
-      for (int l : links_with_geometry) {
-        w.links[l] = std::make_unique<fcl::CollisionObjectd>(link_bvhs[l]);
-      }
-      if (environment_bvh) {
-        w.environment = std::make_unique<fcl::CollisionObjectd>(environment_bvh);
-        w.environment->computeAABB();
-      }
-      w.joint_positions.resize(robot.joints.size());
+    prototype.links.resize(robot.links.size());
+    for (int l : links_with_geometry) {
+      prototype.links[l] = std::make_unique<fcl::CollisionObjectd>(link_bvhs[l]);
     }
+    if (environment_bvh) {
+      prototype.environment = std::make_unique<fcl::CollisionObjectd>(environment_bvh);
+      prototype.environment->computeAABB();
+    }
+    prototype.joint_positions.resize(robot.joints.size());
+  }
+
+  // Copies only read the prototype (and the shared BVHs' reference counts).
+  std::unique_ptr<Workspace> copy_of_prototype() const {
+    auto w = std::make_unique<Workspace>();
+    w->links.resize(prototype.links.size());
+    for (int l : links_with_geometry) {
+      w->links[l] = std::make_unique<fcl::CollisionObjectd>(*prototype.links[l]);
+    }
+    if (prototype.environment) {
+      w->environment = std::make_unique<fcl::CollisionObjectd>(*prototype.environment);
+    }
+    w->joint_positions = prototype.joint_positions;
+    return w;
   }
 
   // Poses every link object for configuration q.
@@ -150,10 +166,10 @@ int FclChecker::threads() const { return impl_->threads; }
 
 void FclChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts) {
   const std::size_t width = impl_->scene.space.width();
-  parallel_for(n, impl_->threads, [&](std::size_t begin, std::size_t end, int thread) {
-    Workspace& w = impl_->workspaces[thread];
+  parallel_for(n, impl_->threads, [&](std::size_t begin, std::size_t end, int) {
+    const auto w = impl_->workspaces.take();
     for (std::size_t i = begin; i < end; ++i) {
-      verdicts[i] = impl_->collides(configurations + i * width, &w) ? 1 : 0;
+      verdicts[i] = impl_->collides(configurations + i * width, &*w) ? 1 : 0;
     }
   });
 }
@@ -162,10 +178,10 @@ void FclChecker::distance(const float* configurations, std::size_t n, double* di
   const std::size_t width = impl_->scene.space.width();
   parallel_for(
       n, impl_->threads,
-      [&](std::size_t begin, std::size_t end, int thread) {
-        Workspace& w = impl_->workspaces[thread];
+      [&](std::size_t begin, std::size_t end, int) {
+        const auto w = impl_->workspaces.take();
         for (std::size_t i = begin; i < end; ++i) {
-          distances[i] = impl_->distance(configurations + i * width, &w);
+          distances[i] = impl_->distance(configurations + i * width, &*w);
         }
       },
       1);

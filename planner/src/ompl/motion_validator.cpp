@@ -30,18 +30,14 @@ bool MotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base:
   std::vector<float> a(width), b(width);
   state_to_row(scene_, s1, a.data());
   state_to_row(scene_, s2, b.data());
-  double fraction = 0;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    // Beyond the bounds the end state is invalid; samples between two states within
-    // the (convex) bounds stay within them.
-    fraction = si_->satisfiesBounds(s2) ? local_.last_valid_fraction(a.data(), b.data()) : -1;
-    if (fraction == 1.0) {
-      ++valid_;
-      return true;
-    }
-    ++invalid_;
+  // Beyond the bounds the end state is invalid; samples between two states within the
+  // (convex) bounds stay within them.
+  double fraction = si_->satisfiesBounds(s2) ? local_.last_valid_fraction(a.data(), b.data()) : -1;
+  if (fraction == 1.0) {
+    count(1, 0);
+    return true;
   }
+  count(0, 1);
   if (fraction < 0) {
     // Only the end state is out of bounds: the last valid sample before it.
     const int n = local_.segments(a.data(), b.data());
@@ -62,19 +58,22 @@ void MotionValidator::checkMotions(
     state_to_row(scene_, motions[i].second, &to[i * width]);
   }
   std::vector<std::uint8_t> invalid(n, 0), end(n, 1);
-  std::lock_guard<std::mutex> lock(mutex_);
   local_.check_motions(from.data(), to.data(), n, invalid.data());
   checker_->check(to.data(), n, end.data());
   valid->assign(n, 0);
+  std::size_t valid_count = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const bool ok = !invalid[i] && !end[i] && si_->satisfiesBounds(motions[i].second);
     (*valid)[i] = ok ? 1 : 0;
-    if (ok) {
-      ++valid_;
-    } else {
-      ++invalid_;
-    }
+    valid_count += ok;
   }
+  count(valid_count, n - valid_count);
+}
+
+void MotionValidator::count(std::size_t valid, std::size_t invalid) const {
+  const std::lock_guard<std::mutex> lock(counters_mutex_);
+  valid_ += valid;
+  invalid_ += invalid;
 }
 
 }  // namespace gplanner::ompl_adapters

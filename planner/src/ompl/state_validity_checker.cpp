@@ -13,11 +13,10 @@ StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr
 
 bool StateValidityChecker::isValid(const ompl::base::State* state) const {
   if (!si_->satisfiesBounds(state)) return false;
-  std::lock_guard<std::mutex> lock(mutex_);
-  rows_.resize(scene_.space.width());
-  state_to_row(scene_, state, rows_.data());
+  std::vector<float> row(scene_.space.width());
+  state_to_row(scene_, state, row.data());
   std::uint8_t verdict = 1;
-  checker_->check(rows_.data(), 1, &verdict);
+  checker_->check(row.data(), 1, &verdict);
   ++checks_;
   return verdict == 0;
 }
@@ -26,18 +25,17 @@ void StateValidityChecker::areValid(const std::vector<const ompl::base::State*>&
                                     std::vector<std::uint8_t>* valid) const {
   const std::size_t n = states.size(), width = scene_.space.width();
   valid->assign(n, 0);
-  std::lock_guard<std::mutex> lock(mutex_);
-  rows_.resize(n * width);
+  std::vector<float> rows(n * width);
   std::vector<std::size_t> inside;  // states within bounds, in the batch
   for (std::size_t i = 0; i < n; ++i) {
     if (!si_->satisfiesBounds(states[i])) continue;
-    state_to_row(scene_, states[i], &rows_[inside.size() * width]);
+    state_to_row(scene_, states[i], &rows[inside.size() * width]);
     inside.push_back(i);
   }
-  verdicts_.assign(inside.size(), 1);
-  if (!inside.empty()) checker_->check(rows_.data(), inside.size(), verdicts_.data());
+  std::vector<std::uint8_t> verdicts(inside.size(), 1);
+  if (!inside.empty()) checker_->check(rows.data(), inside.size(), verdicts.data());
   checks_ += inside.size();
-  for (std::size_t k = 0; k < inside.size(); ++k) (*valid)[inside[k]] = verdicts_[k] == 0;
+  for (std::size_t k = 0; k < inside.size(); ++k) (*valid)[inside[k]] = verdicts[k] == 0;
 }
 
 }  // namespace gplanner::ompl_adapters

@@ -98,7 +98,7 @@ bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t
                                  const int* segment_count, std::uint8_t* invalid) {
   const ConfigurationSpace& space = scene_.space;
   const std::size_t width = space.width();
-  stats_.motions += count;
+  add_stats(count, 0, 0);
   // Each motion's samples in coarse-to-fine order, one order shared by every motion of
   // the same segment count (a roadmap's millions of edges have few distinct counts).
   // The stop is looked at every 65,536 motions here too: PRM hands over all its edges.
@@ -159,8 +159,7 @@ bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t
           1024);
       verdicts.assign(n, 0);
       checker_->check(samples.data(), n, verdicts.data());
-      ++stats_.batches;
-      stats_.samples += n;
+      add_stats(0, n, 1);
       for (std::size_t i = 0; i < n; ++i)
         if (verdicts[i]) invalid[picks[first + i].first] = 1;
     }
@@ -181,12 +180,27 @@ double LocalPlanner::last_valid_fraction(const float* a, const float* b) {
     space.interpolate(a, b, static_cast<double>(j) / n, &samples[(j - 1) * width]);
   std::vector<std::uint8_t> verdicts(n);
   checker_->check(samples.data(), n, verdicts.data());
-  ++stats_.batches;
-  ++stats_.motions;
-  stats_.samples += n;
+  add_stats(1, n, 1);
   for (int j = 1; j <= n; ++j)
     if (verdicts[j - 1]) return static_cast<double>(j - 1) / n;
   return 1.0;
+}
+
+MotionCheckStats LocalPlanner::stats() const {
+  const std::lock_guard<std::mutex> lock(stats_mutex_);
+  return stats_;
+}
+
+void LocalPlanner::reset_stats() {
+  const std::lock_guard<std::mutex> lock(stats_mutex_);
+  stats_ = {};
+}
+
+void LocalPlanner::add_stats(std::size_t motions, std::size_t samples, std::size_t batches) {
+  const std::lock_guard<std::mutex> lock(stats_mutex_);
+  stats_.motions += motions;
+  stats_.samples += samples;
+  stats_.batches += batches;
 }
 
 }  // namespace gplanner

@@ -1,7 +1,9 @@
 #pragma once
 // The batch collision checker on host threads: the same core the GPU runs (BVHs, box
 // and leaf tests, the split rule, float poses), one query per thread at a time, the
-// way the `basic` traversal does on the GPU. Plain C++.
+// way the `basic` traversal does on the GPU. Plain C++. Calls from any number of threads
+// run in parallel: the model is read-only and a query's scratch lives on its thread's
+// stack.
 
 #include <cstddef>
 #include <cstdint>
@@ -22,7 +24,9 @@ class CpuBatchChecker {
   // configurations: shape [n, width]; verdicts: shape [n] (1: collision).
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts);
 
-  // BV-pair and triangle tests done by the last check() (all threads together).
+  // BV-pair and triangle tests of the last check() to finish (all its threads together),
+  // published whole when it ends; with calls from several threads, each of the two reads
+  // the call last finished when it is read.
   unsigned long long bv_tests() const;
   unsigned long long triangle_tests() const;
 

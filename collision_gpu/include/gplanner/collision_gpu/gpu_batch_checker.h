@@ -32,19 +32,19 @@ struct GpuCheckerOptions {
   // one kernel (the pair's node pairs tested 32 at a time) instead of in rounds of
   // tasks; a small batch's time is the latency of its longest chain of tests, which
   // rounds of launches lengthen. 0: always rounds. kAuto, as measured on an H100
-  // (bench/history/issue4_planning.md): up to 1,024 queries for robots with more link and pair tests
-  // than a warp has lanes (many small body pairs), up to 10 for the others (whose one
-  // body pair with the environment the rounds spread over more than a warp).
+  // (bench/history/issue4_planning.md): up to 1,024 queries for robots with more link and pair
+  // tests than a warp has lanes (many small body pairs), up to 10 for the others (whose one body
+  // pair with the environment the rounds spread over more than a warp).
   static constexpr std::size_t kAuto = ~std::size_t(0);
   std::size_t warp_per_pair_up_to = kAuto;
 };
 
-// What the last check() did.
+// What a check() did.
 struct GpuCheckStats {
   double milliseconds = 0;  // GPU time of the whole batch (events around all chunks)
   std::size_t chunks = 0;
-  std::size_t rounds = 0;  // balanced: launches of the task kernel (each a host round trip)
-  int root_lanes = 0;      // balanced: threads per query for kinematics and broad phase
+  std::size_t rounds = 0;      // balanced: launches of the task kernel (each a host round trip)
+  int root_lanes = 0;          // balanced: threads per query for kinematics and broad phase
   bool warp_per_pair = false;  // balanced: the small-batch kernel ran (no rounds)
   std::vector<unsigned> round_tasks;  // balanced: tasks per round (the first 32 of each chunk)
   std::size_t finished_tasks = 0;     // balanced: tasks the rounds left to the finish kernel
@@ -62,10 +62,13 @@ class GpuBatchChecker {
   GpuBatchChecker(const GpuBatchChecker&) = delete;
   GpuBatchChecker& operator=(const GpuBatchChecker&) = delete;
 
-  // configurations: host, shape [n, width]; verdicts: host, shape [n].
+  // configurations: host, shape [n, width]; verdicts: host, shape [n]. Calls from any
+  // number of threads are safe and take turns: the device work of one call (its chunk
+  // buffers, work queues and counters are the checker's own) runs under a lock.
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts);
 
-  const GpuCheckStats& last_stats() const;
+  // Of the last check() to finish, whole (a copy: other threads may be checking).
+  GpuCheckStats last_stats() const;
   std::string device_name() const;
 
  private:

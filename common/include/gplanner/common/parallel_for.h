@@ -11,8 +11,14 @@ namespace gplanner {
 int resolve_thread_count(int requested);
 
 // Calls body(begin, end, thread) for disjoint chunks covering [0, n); `thread` is in
-// [0, threads) and identifies per-thread scratch space. Exceptions from the body are
-// rethrown on the caller's thread.
+// [0, threads) and no two chunks run at once with the same `thread`. The calling thread
+// works too; exceptions from the body are rethrown on it.
+//
+// Calls may come from many threads at once, and from inside a body: the helper threads
+// of all calls running together number at most max(hardware threads, threads) - 1, and
+// a call that finds them all busy runs its loop on the calling thread alone. Many
+// callers (an OMPL planner's threads in a checker's loop) thus share the cores instead
+// of starting threads by the hundred, and no call waits for another's threads.
 void parallel_for(std::size_t n, int threads,
                   const std::function<void(std::size_t, std::size_t, int)>& body,
                   std::size_t grain = 16);

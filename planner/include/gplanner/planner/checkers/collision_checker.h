@@ -1,5 +1,12 @@
 #pragma once
 // The batch call every backend answers: configurations in, one verdict each out.
+//
+// Threads: every backend takes calls of check() from any number of threads at once, a
+// checker shared by them all (OMPL calls validity checkers from several). A call's
+// verdicts are what it would get alone. The fcl and cpu backends run concurrent calls in
+// parallel (per-call scratch, no lock around the work); the gpu backend runs one call's
+// device work at a time. Statistics a backend keeps (bv_tests(), last_stats()) are those
+// of the last call to finish, whole.
 
 #include <cstddef>
 #include <cstdint>

@@ -1,7 +1,9 @@
 #pragma once
 // The baseline and ground truth: FCL (OBBRSS, double) on all CPU cores. Robot links
 // against the environment, and for articulated robots the checked link pairs against
-// each other, with an AABB test first as FCL's broad phase does.
+// each other, with an AABB test first as FCL's broad phase does. Calls from any number
+// of threads run in parallel: each chunk of a call poses FCL objects of its own, taken
+// from a pool that grows to the most chunks ever in flight, over shared, read-only BVHs.
 
 #include <memory>
 

@@ -1,5 +1,8 @@
 #pragma once
 // The `gpu` backend: the scene's collision model on the GPU, with a chosen traversal.
+// Calls from any number of threads are safe; they take turns on the device (one call's
+// device work at a time, under a lock: GpuBatchChecker), so threads add no throughput
+// here, only batches do.
 
 #include <memory>
 
@@ -16,11 +19,12 @@ class GpuChecker : public CollisionChecker {
 
   std::string backend() const override { return "gpu"; }
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override;
-  // Measured on an H100 with the balanced traversal (bench/history/issue4_planning.md): a call of 100
-  // configurations takes 0.4 to 0.7 ms, 10,000 take 0.9 to 2.0 ms.
+  // Measured on an H100 with the balanced traversal (bench/history/issue4_planning.md): a call of
+  // 100 configurations takes 0.4 to 0.7 ms, 10,000 take 0.9 to 2.0 ms.
   std::size_t configurations_per_call_cost() const override { return 8192; }
 
-  const GpuCheckStats& last_stats() const { return checker_.last_stats(); }
+  // Of the last check() to finish.
+  GpuCheckStats last_stats() const { return checker_.last_stats(); }
   std::string device_name() const { return checker_.device_name(); }
   Traversal traversal() const { return traversal_; }
 

@@ -2,8 +2,10 @@
 // An OMPL motion validator backed by any of our collision backends: the straight-line
 // motion between two states (the end state included, the start assumed valid, as
 // OMPL's DiscreteMotionValidator does) sampled at the scene's edge resolution, all
-// samples of a motion in one batch. Keeps OMPL's valid and invalid motion counters;
-// calls from several threads are serialised. The batch extension checks many motions
+// samples of a motion in one batch. Keeps OMPL's valid and invalid motion counters.
+// Calls from any number of threads run at once, each with its own samples (every
+// backend takes concurrent calls; see collision_checker.h for which run in parallel);
+// only the counters are updated under a lock. The batch extension checks many motions
 // in one call, level by level (LocalPlanner::check_motions).
 
 #include <ompl/base/MotionValidator.h>
@@ -42,10 +44,13 @@ class MotionValidator : public ompl::base::MotionValidator {
       std::vector<std::uint8_t>* valid) const;
 
  private:
+  // Adds to OMPL's counters (valid_, invalid_), which calls on other threads update too.
+  void count(std::size_t valid, std::size_t invalid) const;
+
   const Scene& scene_;
   CollisionChecker* checker_;
-  mutable std::mutex mutex_;
-  mutable LocalPlanner local_;
+  mutable std::mutex counters_mutex_;
+  mutable LocalPlanner local_;  // takes concurrent calls
 };
 
 }  // namespace ompl_adapters

@@ -1,13 +1,14 @@
 #pragma once
 // An OMPL state validity checker backed by any of our collision backends: a state is
 // valid when it lies within the space's bounds and our checker finds it free. Calls
-// from several threads are serialised (the backends answer one batch at a time). The
-// batch extension answers many states in one call, as the GPU wants them.
+// from any number of threads run at once, each with its own buffers (every backend
+// takes concurrent calls; see collision_checker.h for which run in parallel). The batch
+// extension answers many states in one call, as the GPU wants them.
 
 #include <ompl/base/StateValidityChecker.h>
 
+#include <atomic>
 #include <cstdint>
-#include <mutex>
 #include <vector>
 
 #include "gplanner/planner/checkers/collision_checker.h"
@@ -36,10 +37,7 @@ class StateValidityChecker : public ompl::base::StateValidityChecker {
  private:
   const Scene& scene_;
   CollisionChecker* checker_;
-  mutable std::mutex mutex_;
-  mutable std::vector<float> rows_;
-  mutable std::vector<std::uint8_t> verdicts_;
-  mutable std::size_t checks_ = 0;
+  mutable std::atomic<std::size_t> checks_{0};
 };
 
 }  // namespace ompl_adapters

@@ -12,10 +12,16 @@
 // then the quarter points, ...), level by level across all motions: a motion found invalid drops
 // out before its finer samples are checked, and once the samples left are few they all go in one
 // batch.
+//
+// Threads: check_motions and last_valid_fraction take calls from several threads at once
+// (the OMPL motion validator's), each with its own samples, the checker taking concurrent
+// calls; the statistics are added under a lock. set_stop and reset_stats are for the
+// planner's own thread, not while calls run.
 
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <mutex>
 #include <vector>
 
 #include "gplanner/knn_gpu/configuration_metric.h"
@@ -79,20 +85,23 @@ class LocalPlanner {
   }
   std::size_t one_batch_samples() const { return options_.one_batch_samples; }
 
-  const MotionCheckStats& stats() const { return stats_; }
-  void reset_stats() { stats_ = {}; }
+  // Of all calls so far (a copy: calls on other threads may be adding to them).
+  MotionCheckStats stats() const;
+  void reset_stats();
   const ConfigurationMetric& metric() const { return metric_; }
 
  private:
   // Segments by the components' own resolutions, before rounding up.
   double component_segments(const float* a, const float* b) const;
+  void add_stats(std::size_t motions, std::size_t samples, std::size_t batches);
 
   const Scene& scene_;
   CollisionChecker* checker_;
   LocalPlannerOptions options_;
   ConfigurationMetric metric_;
   MotionBound bound_;
-  MotionCheckStats stats_;
+  mutable std::mutex stats_mutex_;
+  MotionCheckStats stats_;  // under stats_mutex_
   std::function<bool()> should_stop_;
 };
 

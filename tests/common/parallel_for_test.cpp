@@ -1,0 +1,109 @@
+// Host thread loops: every index once, thread indices each on one thread at a time, and
+// calls from many threads at once (and from inside a loop) sharing the helper threads
+// instead of each starting its own.
+
+#include "gplanner/common/parallel_for.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "gplanner/common/scratch_pool.h"
+
+namespace gplanner {
+namespace {
+
+TEST(ParallelFor, EveryIndexOnceAndEachThreadIndexOnOneThread) {
+  const std::size_t n = 10000;
+  std::vector<std::atomic<int>> seen(n);
+  std::vector<std::atomic<int>> running(8);
+  std::atomic<int> overlaps{0};
+  parallel_for(n, 8, [&](std::size_t begin, std::size_t end, int thread) {
+    ASSERT_GE(thread, 0);
+    ASSERT_LT(thread, 8);
+    if (running[thread]++ != 0) ++overlaps;
+    for (std::size_t i = begin; i < end; ++i) ++seen[i];
+    --running[thread];
+  });
+  for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(seen[i], 1) << i;
+  EXPECT_EQ(overlaps, 0);
+}
+
+TEST(ParallelFor, AnExceptionReachesTheCaller) {
+  EXPECT_THROW(parallel_for(1000, 4,
+                            [](std::size_t begin, std::size_t, int) {
+                              if (begin >= 500) throw std::runtime_error("body");
+                            }),
+               std::runtime_error);
+}
+
+// Callers on many threads, each loop asking for 4 threads and calling another loop from
+// its body: every index of every loop once, and the threads running loop bodies at once
+// stay within the callers plus the helpers one process may run.
+TEST(ParallelFor, ManyCallersAndNestedLoopsShareTheHelpers) {
+  constexpr int kCallers = 8, kOuter = 64, kInner = 64;
+  const int limit = kCallers + std::max(resolve_thread_count(0), 4) - 1;
+  std::atomic<int> active{0}, peak{0};
+  std::vector<std::atomic<int>> seen(kCallers * kOuter * kInner);
+  std::vector<std::thread> callers;
+  for (int c = 0; c < kCallers; ++c) {
+    callers.emplace_back([&, c] {
+      parallel_for(
+          kOuter, 4,
+          [&](std::size_t begin, std::size_t end, int) {
+            const int now = ++active;
+            for (int p = peak; now > p && !peak.compare_exchange_weak(p, now);) {
+            }
+            for (std::size_t i = begin; i < end; ++i) {
+              parallel_for(
+                  kInner, 4,
+                  [&](std::size_t b, std::size_t e, int) {
+                    for (std::size_t j = b; j < e; ++j) ++seen[(c * kOuter + i) * kInner + j];
+                  },
+                  8);
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            --active;
+          },
+          4);
+    });
+  }
+  for (std::thread& caller : callers) caller.join();
+  for (std::size_t k = 0; k < seen.size(); ++k) ASSERT_EQ(seen[k], 1) << k;
+  EXPECT_LE(peak, limit);
+  std::cout << peak << " outer bodies at once at most (" << kCallers << " callers, "
+            << resolve_thread_count(0) << " hardware threads)\n";
+}
+
+TEST(ScratchPool, EachLeaseHasItsOwnObjectAndObjectsAreReused) {
+  std::atomic<int> made{0};
+  ScratchPool<int> pool([&] {
+    ++made;
+    return std::make_unique<int>(0);
+  });
+  {
+    auto a = pool.take();
+    auto b = pool.take();
+    EXPECT_NE(&*a, &*b);
+  }
+  EXPECT_EQ(made, 2);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&] {
+      for (int k = 0; k < 1000; ++k) {
+        auto lease = pool.take();
+        EXPECT_EQ(++*lease, 1);  // nobody else holds it
+        --*lease;
+      }
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  EXPECT_LE(made, 4 + 2);
+}
+
+}  // namespace
+}  // namespace gplanner

@@ -226,7 +226,8 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
     }
   }
   const std::string urdf_path = in.path(node["urdf"], key + ".urdf");
-  scene->robot = load_urdf(urdf_path, packages, in.at(node["urdf"], key + ".urdf"));
+  scene->robot =
+      load_urdf(urdf_path, packages, in.at(node["urdf"], key + ".urdf"), &scene->notices);
   RobotModel& robot = scene->robot;
   if (node["srdf"]) {
     const std::string srdf_path = in.path(node["srdf"], key + ".srdf");

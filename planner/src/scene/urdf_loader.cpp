@@ -506,7 +506,6 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
       }
       out.parent_joint = static_cast<int>(robot.joints.size());
       robot.joints.push_back(joint);
-      robot.disabled_pairs.emplace_back(joint.parent_link, joint.child_link);
     }
     robot.links.push_back(std::move(out));
     for (const urdf::LinkSharedPtr& child : link->child_links) queue.push_back(child);
@@ -534,7 +533,7 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
                      "no link has collision geometry, so nothing can collide; add a <collision> "
                      "with a <geometry> to each link that can hit something");
   }
-  std::sort(robot.disabled_pairs.begin(), robot.disabled_pairs.end());
+  robot.disabled_pairs = adjacent_link_pairs(robot);
   return robot;
 }
 

@@ -1,4 +1,5 @@
-// URDF collision geometry that cannot be lost without a word.
+// URDF collision geometry that cannot be lost without a word, and adjacency as MoveIt
+// has it: links joined through links without collision geometry are adjacent.
 
 #include "gplanner/planner/scene/urdf_loader.h"
 
@@ -11,7 +12,9 @@
 #include <utility>
 #include <vector>
 
+#include "gplanner/planner/checkers/checker_factory.h"
 #include "gplanner/planner/scene/input_error.h"
+#include "gplanner/planner/scene/scene.h"
 #include "test_support.h"
 
 namespace gplanner {
@@ -232,6 +235,114 @@ TEST_F(UrdfLoader, CollisionMeshesWithoutTrianglesAreErrors) {
         two_links(std::string(kGoodCollision) + "    <collision><geometry>\n<mesh filename=\"" +
                   file + "\"/>\n</geometry></collision>");
     expect_error(text, "<mesh filename", "link 'arm' collision", {file, says});
+  }
+}
+
+// A tree with geometry-less links in three places, and the pairs MoveIt's Setup
+// Assistant calls adjacent:
+//   base -> mount* -> arm -> wrist* -> flange* -> hand -> finger_l, finger_r
+//                                   -> camera
+//   base -> hub* -> wheel_l, wheel_r                      (* no collision geometry)
+// At the zero pose, hand overlaps arm (through wrist and flange), camera overlaps hand
+// and arm (through wrist), the wheels overlap each other and the base (through hub):
+// all adjacent. The fingers (a pair of siblings under hand, which has geometry) are
+// not: closed (finger_l = 0) they overlap, open (0.08) they are apart.
+const char* const kTreeUrdf = R"(<?xml version="1.0"?>
+<robot name="tree">
+  <link name="base"><collision><geometry><box size="0.4 0.4 0.1"/></geometry></collision></link>
+  <link name="mount"/>
+  <link name="arm"><collision><origin xyz="0 0 0.3"/><geometry><box size="0.1 0.1 0.6"/></geometry></collision></link>
+  <link name="wrist"/>
+  <link name="flange"/>
+  <link name="hand"><collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision></link>
+  <link name="camera"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="finger_l"><collision><geometry><box size="0.05 0.05 0.1"/></geometry></collision></link>
+  <link name="finger_r"><collision><geometry><box size="0.05 0.05 0.1"/></geometry></collision></link>
+  <link name="hub"/>
+  <link name="wheel_l"><collision><origin rpy="1.5707963 0 0"/><geometry><cylinder radius="0.1" length="0.1"/></geometry></collision></link>
+  <link name="wheel_r"><collision><origin rpy="1.5707963 0 0"/><geometry><cylinder radius="0.1" length="0.1"/></geometry></collision></link>
+  <joint name="to_mount" type="fixed"><parent link="base"/><child link="mount"/><origin xyz="0 0 0.05"/></joint>
+  <joint name="turn" type="revolute"><parent link="mount"/><child link="arm"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="bend" type="revolute"><parent link="arm"/><child link="wrist"/><origin xyz="0 0 0.6"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="to_flange" type="fixed"><parent link="wrist"/><child link="flange"/></joint>
+  <joint name="to_hand" type="fixed"><parent link="flange"/><child link="hand"/></joint>
+  <joint name="to_camera" type="fixed"><parent link="wrist"/><child link="camera"/><origin xyz="0.1 0 0"/></joint>
+  <joint name="finger_l" type="prismatic"><parent link="hand"/><child link="finger_l"/>
+    <origin xyz="0 0 0.1"/><axis xyz="0 1 0"/><limit lower="0" upper="0.1" effort="1" velocity="1"/></joint>
+  <joint name="finger_r" type="prismatic"><parent link="hand"/><child link="finger_r"/>
+    <origin xyz="0 0 0.1"/><axis xyz="0 1 0"/><limit lower="-0.1" upper="0" effort="1" velocity="1"/>
+    <mimic joint="finger_l" multiplier="-1"/></joint>
+  <joint name="to_hub" type="fixed"><parent link="base"/><child link="hub"/><origin xyz="0 0 -0.1"/></joint>
+  <joint name="wheel_l" type="continuous"><parent link="hub"/><child link="wheel_l"/><origin xyz="0 0.04 0"/>
+    <axis xyz="0 1 0"/></joint>
+  <joint name="wheel_r" type="continuous"><parent link="hub"/><child link="wheel_r"/><origin xyz="0 -0.04 0"/>
+    <axis xyz="0 1 0"/></joint>
+</robot>
+)";
+
+using NamePair = std::pair<std::string, std::string>;
+
+// The pairs among links with geometry, by name, each sorted.
+std::set<NamePair> named_pairs_with_geometry(const RobotModel& robot,
+                                             const std::vector<std::pair<int, int>>& pairs) {
+  std::set<NamePair> named;
+  for (const auto& [a, b] : pairs) {
+    if (robot.links[a].collision.empty() || robot.links[b].collision.empty()) continue;
+    named.emplace(std::min(robot.links[a].name, robot.links[b].name),
+                  std::max(robot.links[a].name, robot.links[b].name));
+  }
+  return named;
+}
+
+TEST(Adjacency, LinksJoinedThroughLinksWithoutGeometryAreAdjacent) {
+  testing::ScratchFolder scratch;
+  const RobotModel robot = load_urdf(scratch.write("tree.urdf", kTreeUrdf), {}, {"test", 0, ""});
+  const std::set<NamePair> expected = {{"arm", "base"},          // through mount
+                                       {"arm", "hand"},          // through wrist and flange
+                                       {"arm", "camera"},        // through wrist
+                                       {"camera", "hand"},       // through flange and wrist
+                                       {"finger_l", "hand"},     // parent and child
+                                       {"finger_r", "hand"},     // parent and child
+                                       {"base", "wheel_l"},      // through hub
+                                       {"base", "wheel_r"},      // through hub
+                                       {"wheel_l", "wheel_r"}};  // siblings under hub
+  EXPECT_EQ(named_pairs_with_geometry(robot, adjacent_link_pairs(robot)), expected);
+  EXPECT_EQ(robot.disabled_pairs, adjacent_link_pairs(robot));
+  // Every parent and child stays a pair, geometry or not.
+  for (const Joint& joint : robot.joints) {
+    const std::pair<int, int> pair(std::min(joint.parent_link, joint.child_link),
+                                   std::max(joint.parent_link, joint.child_link));
+    EXPECT_EQ(std::count(robot.disabled_pairs.begin(), robot.disabled_pairs.end(), pair), 1)
+        << joint.name;
+  }
+  // 8 links with geometry, 28 pairs, 9 adjacent: 19 checked, the fingers among them.
+  const std::vector<std::pair<int, int>> checked = robot.checked_pairs();
+  EXPECT_EQ(checked.size(), 19u);
+  EXPECT_EQ(named_pairs_with_geometry(robot, checked).count({"finger_l", "finger_r"}), 1u);
+  EXPECT_EQ(named_pairs_with_geometry(robot, checked).count({"base", "hand"}), 1u);
+}
+
+// The same tree as a scene: the zero pose, whose adjacent links overlap, is free on
+// every CPU backend with the fingers open (0.08), and collides with them closed.
+TEST(Adjacency, OverlappingAdjacentLinksDoNotCollide) {
+  testing::ScratchFolder scratch;
+  scratch.write("tree.urdf", kTreeUrdf);
+  const Scene scene = load_scene(scratch.write("tree.yaml", R"(name: tree
+robot: {urdf: tree.urdf, planned_joints: [finger_l]}
+obstacles:
+  - box: [0.1, 0.1, 0.1]
+    pose: {xyz: [0.5, 0, 0.2]}
+start: {joints: {finger_l: 0.08}}
+goal: {joints: {finger_l: 0.09}}
+)"));
+  for (const char* backend : {"fcl", "cpu"}) {
+    SCOPED_TRACE(backend);
+    const std::unique_ptr<CollisionChecker> checker = make_collision_checker(scene, backend);
+    const float open = 0.08f, closed = 0.0f;
+    EXPECT_FALSE(checker->in_collision(&open));
+    EXPECT_TRUE(checker->in_collision(&closed));
   }
 }
 

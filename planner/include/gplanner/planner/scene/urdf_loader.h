@@ -22,7 +22,7 @@ std::string resolve_resource(const std::string& uri, const std::string& base_fol
 // Loads a URDF: links in topological order, joints (revolute, continuous, prismatic,
 // fixed, floating, planar; limits; mimic), collision geometry as triangle meshes in the
 // link frame (meshes through assimp with the URDF scale, primitives tessellated).
-// Parent-child links joined by a joint are disabled pairs. Throws InputError naming
+// Adjacent links (adjacent_link_pairs) are disabled pairs. Throws InputError naming
 // the URDF (and the element and line where known) or `referenced_from` when the file
 // itself is missing; a <collision> that cannot be read whole (an origin, size or scale
 // that is not finite numbers of the right count and sign, a missing or unknown shape)

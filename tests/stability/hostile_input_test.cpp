@@ -260,7 +260,7 @@ TEST(StabilityHostileInput, GpuNanometreLink) {
 // --- links of zero size -------------------------------------------------------------------
 
 // A zero-size box or a zero mesh scale is refused at load, naming the URDF file, the
-// link's line and what is wrong; an obstacle mesh scaled by zero likewise.
+// line of the element and what is wrong; an obstacle mesh scaled by zero likewise.
 TEST(StabilityHostileInput, ZeroSizeLinksAreRefusedWithTheirLine) {
   testing::ScratchFolder scratch;
   scratch.write("tetra.obj",
@@ -284,9 +284,10 @@ TEST(StabilityHostileInput, ZeroSizeLinksAreRefusedWithTheirLine) {
     } catch (const InputError& e) {
       const std::string message = e.what();
       EXPECT_EQ(e.where().file, urdf_path) << message;
-      EXPECT_EQ(e.where().line, 3) << message;  // <link name="speck">
-      const bool says_what = message.find("box size must be positive") != std::string::npos ||
-                             message.find("non-zero on every axis") != std::string::npos;
+      EXPECT_EQ(e.where().line, 3) << message;  // the speck's <box> or <mesh>
+      const bool says_what =
+          message.find("is not three positive finite numbers") != std::string::npos ||
+          message.find("is not three finite non-zero numbers") != std::string::npos;
       EXPECT_TRUE(says_what) << message;
     }
   }

@@ -1,5 +1,7 @@
 #include "gplanner/planner/scene/mesh_loader.h"
 
+#include <tinyxml2.h>
+
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -7,8 +9,11 @@
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 
 namespace gplanner {
 namespace {
@@ -20,10 +25,19 @@ Eigen::Matrix4d to_eigen(const aiMatrix4x4& m) {
   return out;
 }
 
+// Appends the triangles of `node` and its children. A node whose transform (with its
+// parents', the file's unit among them) is singular would flatten its meshes: an
+// InputError, as a zero scale is.
 void collect_triangles(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& X_parent,
-                       TriangleMesh* mesh) {
+                       TriangleMesh* mesh, const SourceLocation& where, const std::string& what) {
   const Eigen::Matrix4d X_node = X_parent * to_eigen(node.mTransformation);
-  const bool mirrored = X_node.topLeftCorner<3, 3>().determinant() < 0;
+  const double determinant = X_node.topLeftCorner<3, 3>().determinant();
+  if (node.mNumMeshes > 0 && !(std::isfinite(determinant) && determinant != 0)) {
+    throw InputError(where, what + " is flattened by its own transforms: node '" +
+                                node.mName.C_Str() +
+                                "' (or the file's unit) scales an axis by zero; fix the file");
+  }
+  const bool mirrored = determinant < 0;
   for (unsigned m = 0; m < node.mNumMeshes; ++m) {
     const aiMesh& part = *scene.mMeshes[node.mMeshes[m]];
     const int base = static_cast<int>(mesh->vertices.size());
@@ -41,8 +55,58 @@ void collect_triangles(const aiScene& scene, const aiNode& node, const Eigen::Ma
     }
   }
   for (unsigned c = 0; c < node.mNumChildren; ++c) {
-    collect_triangles(scene, *node.mChildren[c], X_node, mesh);
+    collect_triangles(scene, *node.mChildren[c], X_node, mesh, where, what);
   }
+}
+
+// The up axis a COLLADA file declares in <asset><up_axis>, and the line saying it (0
+// when none does: COLLADA's default is Y_UP).
+struct UpAxis {
+  std::string axis = "Y_UP";
+  int line = 0;
+};
+
+UpAxis collada_up_axis(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  UpAxis up;
+  // <asset> is the first child of <COLLADA>; read it alone rather than the whole file.
+  const std::size_t begin = text.find("<asset");
+  const std::size_t end = text.find("</asset>", begin);
+  if (begin == std::string::npos || end == std::string::npos) return up;
+  tinyxml2::XMLDocument asset;
+  if (asset.Parse(text.data() + begin, end + 8 - begin) != tinyxml2::XML_SUCCESS) return up;
+  const tinyxml2::XMLElement* element = asset.RootElement()->FirstChildElement("up_axis");
+  if (element == nullptr || element->GetText() == nullptr) return up;
+  std::istringstream value(element->GetText());
+  value >> up.axis;
+  up.line = static_cast<int>(std::count(text.begin(), text.begin() + begin, '\n')) +
+            element->GetLineNum();
+  return up;
+}
+
+// ROS and hpp-fcl read COLLADA coordinates as written, z up, whatever axis the file
+// declares (docs/scenes.md, "COLLADA up axes"); so do we, and say so for other axes.
+void note_ignored_up_axis(const std::string& path, std::vector<std::string>* notices) {
+  const UpAxis up = collada_up_axis(path);
+  if (up.axis == "Z_UP") return;
+  const std::string turn = up.axis == "X_UP" ? "a quarter turn about y (rpy=\"0 -1.5708 0\")"
+                                             : "a quarter turn about x (rpy=\"1.5708 0 0\")";
+  const std::string notice =
+      path + (up.line > 0 ? ":" + std::to_string(up.line) : std::string()) + ": COLLADA up axis " +
+      up.axis + (up.line > 0 ? "" : " (COLLADA's default: the file declares none)") +
+      " ignored: the mesh is read as written, z up, as ROS (MoveIt, RViz) and hpp-fcl read it; "
+      "if it really is " +
+      up.axis + ", turn it where it is placed: " + turn;
+  if (std::find(notices->begin(), notices->end(), notice) == notices->end()) {
+    notices->push_back(notice);
+  }
+}
+
+bool is_collada(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".dae";
 }
 
 }  // namespace
@@ -71,7 +135,7 @@ void validate_mesh(TriangleMesh* mesh, const SourceLocation& where, const std::s
 }
 
 TriangleMesh load_mesh(const std::string& path, const Eigen::Vector3d& scale,
-                       const SourceLocation& referenced_from) {
+                       const SourceLocation& referenced_from, std::vector<std::string>* notices) {
   const std::string what = "mesh '" + path + "'";
   if (!std::filesystem::is_regular_file(path)) {
     throw InputError(referenced_from, what + " does not exist; fix the path");
@@ -83,9 +147,11 @@ TriangleMesh load_mesh(const std::string& path, const Eigen::Vector3d& scale,
     throw InputError(referenced_from, "mesh scale must be finite and non-zero on every axis");
   }
   Assimp::Importer importer;
-  // COLLADA files say which axis is up; ROS meshes are z-up whatever they declare, and
-  // assimp would otherwise rotate them to y-up.
+  // COLLADA files say which axis is up, and assimp would turn them to y up; ROS and
+  // hpp-fcl read them as written, z up, and so do we (with a notice for other axes).
+  // Units (<unit meter=...>) stay applied, as RViz and Gazebo apply them.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+  if (notices && is_collada(path)) note_ignored_up_axis(path, notices);
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(
@@ -98,10 +164,13 @@ TriangleMesh load_mesh(const std::string& path, const Eigen::Vector3d& scale,
                                             " has no triangles (only points or lines); give a "
                                             "mesh with at least one face");
     }
-    throw InputError(referenced_from, what + " cannot be read: " + error);
+    throw InputError(referenced_from, what + " cannot be read: " + error +
+                                          "; give a mesh file (STL, OBJ, COLLADA, ...) with at "
+                                          "least one triangle");
   }
   TriangleMesh mesh;
-  collect_triangles(*scene, *scene->mRootNode, Eigen::Matrix4d::Identity(), &mesh);
+  collect_triangles(*scene, *scene->mRootNode, Eigen::Matrix4d::Identity(), &mesh, referenced_from,
+                    what);
   validate_mesh(&mesh, referenced_from, what);
   for (Eigen::Vector3d& p : mesh.vertices) p = p.cwiseProduct(scale);
   if (scale.prod() < 0) {

@@ -56,6 +56,39 @@ std::vector<std::pair<int, int>> RobotModel::checked_pairs() const {
   return pairs;
 }
 
+std::vector<std::pair<int, int>> adjacent_link_pairs(const RobotModel& robot) {
+  const int n = static_cast<int>(robot.links.size());
+  std::vector<std::vector<int>> neighbours(n);
+  std::set<std::pair<int, int>> pairs;
+  for (const Joint& joint : robot.joints) {
+    const int a = joint.parent_link, b = joint.child_link;
+    neighbours[a].push_back(b);
+    neighbours[b].push_back(a);
+    pairs.emplace(std::min(a, b), std::max(a, b));
+  }
+  // From each link with geometry, walk the tree through links without geometry; the
+  // first links with geometry met on the way are its adjacent ones.
+  for (int from = 0; from < n; ++from) {
+    if (robot.links[from].collision.empty()) continue;
+    std::vector<int> stack = neighbours[from];
+    std::vector<bool> seen(n, false);
+    seen[from] = true;
+    while (!stack.empty()) {
+      const int at = stack.back();
+      stack.pop_back();
+      if (seen[at]) continue;
+      seen[at] = true;
+      if (!robot.links[at].collision.empty()) {
+        pairs.emplace(std::min(from, at), std::max(from, at));
+        continue;
+      }
+      for (const int next : neighbours[at])
+        if (!seen[next]) stack.push_back(next);
+    }
+  }
+  return {pairs.begin(), pairs.end()};
+}
+
 RobotModel make_rigid_robot(const std::string& name, TriangleMesh mesh,
                             const std::string& source_file) {
   RobotModel robot;

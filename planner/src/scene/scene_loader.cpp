@@ -208,8 +208,8 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
       in.fail(node["base"], key + ".base", "a mesh robot is a rigid body with a floating base");
     }
     const std::string mesh_path = in.path(node["mesh"], key + ".mesh");
-    TriangleMesh mesh =
-        load_mesh(mesh_path, Eigen::Vector3d::Ones(), in.at(node["mesh"], key + ".mesh"));
+    TriangleMesh mesh = load_mesh(mesh_path, Eigen::Vector3d::Ones(),
+                                  in.at(node["mesh"], key + ".mesh"), &scene->notices);
     scene->robot =
         make_rigid_robot(fs::path(mesh_path).stem().string(), std::move(mesh), mesh_path);
     space.base = BaseType::kFloating;
@@ -226,7 +226,8 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
     }
   }
   const std::string urdf_path = in.path(node["urdf"], key + ".urdf");
-  scene->robot = load_urdf(urdf_path, packages, in.at(node["urdf"], key + ".urdf"));
+  scene->robot =
+      load_urdf(urdf_path, packages, in.at(node["urdf"], key + ".urdf"), &scene->notices);
   RobotModel& robot = scene->robot;
   if (node["srdf"]) {
     const std::string srdf_path = in.path(node["srdf"], key + ".srdf");
@@ -449,7 +450,7 @@ void read_obstacles(const YamlReader& in, const YAML::Node& node, Scene* scene) 
           item["scale"] ? in.vector3(item["scale"], key + ".scale") : Eigen::Vector3d::Ones();
       if ((scale.array() == 0).any())
         in.fail(item["scale"], key + ".scale", "a zero scale flattens the mesh");
-      mesh = load_mesh(path, scale, in.at(item["mesh"], key + ".mesh"));
+      mesh = load_mesh(path, scale, in.at(item["mesh"], key + ".mesh"), &scene->notices);
       obstacle.name = fs::path(path).stem().string();
     } else if (item["box"]) {
       const Eigen::Vector3d size = in.vector3(item["box"], key + ".box");

@@ -9,6 +9,7 @@
 #include <deque>
 #include <filesystem>
 #include <fstream>
+#include <locale>
 #include <mutex>
 #include <set>
 #include <sstream>
@@ -20,16 +21,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// urdfdom reports why a file fails through console_bridge; capture the first error
-// so that our message can say it. console_bridge's handler is process-global.
+// urdfdom reports why a file or an element fails through console_bridge; capture the
+// errors so that our messages can say them. console_bridge's handler is process-global.
 class CapturingOutputHandler : public console_bridge::OutputHandler {
  public:
   void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
-    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && first_error.empty()) {
-      first_error = text;
-    }
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) errors.push_back(text);
   }
-  std::string first_error;
+  std::vector<std::string> errors;
 };
 
 std::mutex urdf_parser_mutex;
@@ -82,36 +81,27 @@ JointType to_joint_type(int urdf_type) {
   }
 }
 
+// The triangles of one collision shape that check_collision has read from the XML
+// already, so that its sizes and scale are known to be positive (non-zero) and finite.
 TriangleMesh collision_geometry(const urdf::Geometry& geometry, const std::string& urdf_folder,
-                                const PackageMap& packages, const SourceLocation& where) {
+                                const PackageMap& packages, const SourceLocation& where,
+                                std::vector<std::string>* notices) {
   switch (geometry.type) {
     case urdf::Geometry::BOX: {
       const auto& box = static_cast<const urdf::Box&>(geometry);
-      const Eigen::Vector3d size(box.dim.x, box.dim.y, box.dim.z);
-      if (!size.allFinite() || (size.array() <= 0).any()) {
-        throw InputError(where, "box size must be positive and finite");
-      }
-      return make_box(size);
+      return make_box(Eigen::Vector3d(box.dim.x, box.dim.y, box.dim.z));
     }
-    case urdf::Geometry::SPHERE: {
-      const double radius = static_cast<const urdf::Sphere&>(geometry).radius;
-      if (!std::isfinite(radius) || radius <= 0) {
-        throw InputError(where, "sphere radius must be positive and finite");
-      }
-      return make_sphere(radius);
-    }
+    case urdf::Geometry::SPHERE:
+      return make_sphere(static_cast<const urdf::Sphere&>(geometry).radius);
     case urdf::Geometry::CYLINDER: {
       const auto& cylinder = static_cast<const urdf::Cylinder&>(geometry);
-      if (!std::isfinite(cylinder.radius) || !std::isfinite(cylinder.length) ||
-          cylinder.radius <= 0 || cylinder.length <= 0) {
-        throw InputError(where, "cylinder radius and length must be positive and finite");
-      }
       return make_cylinder(cylinder.radius, cylinder.length);
     }
     case urdf::Geometry::MESH: {
       const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
       const std::string path = resolve_resource(mesh.filename, urdf_folder, packages, where);
-      return load_mesh(path, Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z), where);
+      return load_mesh(path, Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z), where,
+                       notices);
     }
   }
   throw InputError(where, "unsupported collision geometry");
@@ -217,10 +207,198 @@ void check_tree(const tinyxml2::XMLDocument& doc, const std::string& path) {
   }
 }
 
+// Reads `text` as `count` finite numbers, each whitespace-separated token whole in the
+// classic locale, as urdfdom reads numbers (it refuses nan and inf too).
+bool read_numbers(const char* text, int count, double* values) {
+  if (text == nullptr) return false;
+  std::istringstream tokens(text);
+  std::string token;
+  int read = 0;
+  while (tokens >> token) {
+    if (read == count) return false;
+    std::istringstream in(token);
+    in.imbue(std::locale::classic());
+    double value = 0;
+    in >> value;
+    if (in.fail() || !in.eof() || !std::isfinite(value)) return false;
+    values[read++] = value;
+  }
+  return read == count;
+}
+
+// Throws the error for attribute `name` of `element`, missing or not what `expected`
+// says, with `fix`.
+[[noreturn]] void bad_attribute(const SourceLocation& where, const tinyxml2::XMLElement& element,
+                                const char* name, const std::string& expected,
+                                const std::string& fix) {
+  const std::string tag = std::string("<") + element.Name() + "> ";
+  const char* value = element.Attribute(name);
+  throw InputError(where, tag +
+                              (value ? std::string(name) + "=\"" + value + "\" is not "
+                                     : std::string("has no ") + name + " attribute, expected ") +
+                              expected + "; " + fix);
+}
+
+void check_origin(const tinyxml2::XMLElement& origin, const SourceLocation& where) {
+  double values[3];
+  if (origin.Attribute("xyz") && !read_numbers(origin.Attribute("xyz"), 3, values)) {
+    bad_attribute(where, origin, "xyz", "three finite numbers",
+                  "write the position in metres, such as xyz=\"0 0 0.1\"");
+  }
+  if (origin.Attribute("rpy") && !read_numbers(origin.Attribute("rpy"), 3, values)) {
+    bad_attribute(where, origin, "rpy", "three finite numbers",
+                  "write roll, pitch and yaw in radians, such as rpy=\"0 0 1.5708\"");
+  }
+}
+
+// The shape inside a collision's <geometry>.
+void check_shape(const tinyxml2::XMLElement& shape, const SourceLocation& where) {
+  const std::string tag = shape.Name();
+  double values[3];
+  auto positive = [&](const char* name, int count) {
+    if (!read_numbers(shape.Attribute(name), count, values)) return false;
+    for (int k = 0; k < count; ++k)
+      if (values[k] <= 0) return false;
+    return true;
+  };
+  if (tag == "box") {
+    if (!positive("size", 3)) {
+      bad_attribute(where, shape, "size", "three positive finite numbers",
+                    "give the side lengths in metres, such as size=\"0.1 0.2 0.3\"");
+    }
+  } else if (tag == "sphere") {
+    if (!positive("radius", 1)) {
+      bad_attribute(where, shape, "radius", "a positive finite number",
+                    "give the radius in metres, such as radius=\"0.05\"");
+    }
+  } else if (tag == "cylinder") {
+    for (const char* name : {"radius", "length"}) {
+      if (!positive(name, 1)) {
+        bad_attribute(where, shape, name, "a positive finite number",
+                      std::string("give the ") + name + " in metres, such as " + name + "=\"0.1\"");
+      }
+    }
+  } else if (tag == "mesh") {
+    const char* filename = shape.Attribute("filename");
+    if (filename == nullptr || *filename == '\0') {
+      throw InputError(where,
+                       "<mesh> has no filename; name the mesh file, such as "
+                       "filename=\"package://PACKAGE/meshes/part.stl\"");
+    }
+    if (shape.Attribute("scale") && (!read_numbers(shape.Attribute("scale"), 3, values) ||
+                                     values[0] == 0 || values[1] == 0 || values[2] == 0)) {
+      bad_attribute(where, shape, "scale", "three finite non-zero numbers",
+                    "give one factor per axis, such as scale=\"1 1 1\"");
+    }
+  } else {
+    throw InputError(where, "<" + tag +
+                                "> is not a shape a URDF collision can hold; use <box>, "
+                                "<cylinder>, <sphere> or <mesh>");
+  }
+}
+
+// One <collision> of link `link`, checked as strictly as the loader uses it.
+void check_collision(const tinyxml2::XMLElement& collision, const std::string& path,
+                     const std::string& link, std::vector<std::string>* notices) {
+  const std::string key = "link '" + link + "' collision";
+  for (const tinyxml2::XMLElement* e = collision.FirstChildElement(); e;
+       e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    if (tag != "origin" && tag != "geometry" && notices) {
+      notices->push_back(path + ":" + std::to_string(e->GetLineNum()) + ": " + key + ": <" + tag +
+                         "> is not part of a URDF collision; skipped");
+    }
+  }
+  if (const tinyxml2::XMLElement* origin = collision.FirstChildElement("origin")) {
+    check_origin(*origin, {path, origin->GetLineNum(), key});
+  }
+  const tinyxml2::XMLElement* geometry = collision.FirstChildElement("geometry");
+  if (geometry == nullptr) {
+    throw InputError({path, collision.GetLineNum(), key},
+                     "no <geometry>; give it a <box>, <cylinder>, <sphere> or <mesh>, or remove "
+                     "the <collision>");
+  }
+  const tinyxml2::XMLElement* shape = geometry->FirstChildElement();
+  if (shape == nullptr) {
+    throw InputError({path, geometry->GetLineNum(), key},
+                     "<geometry> is empty; give it one <box>, <cylinder>, <sphere> or <mesh>");
+  }
+  if (const tinyxml2::XMLElement* second = shape->NextSiblingElement()) {
+    throw InputError({path, second->GetLineNum(), key},
+                     "<geometry> holds more than one shape, and urdfdom reads only the first; "
+                     "give each shape a <collision> of its own");
+  }
+  check_shape(*shape, {path, shape->GetLineNum(), key});
+}
+
+// A <link> element and its <collision> elements, in file order.
+struct LinkElements {
+  const tinyxml2::XMLElement* link = nullptr;
+  std::vector<const tinyxml2::XMLElement*> collisions;
+};
+
+// The <collision> elements of each link, in file order, each checked: urdfdom drops
+// every collision of a link when it cannot read one of them (a NaN or a typo in an
+// origin, a scale of two numbers, an unknown shape), logging the error and going on.
+// Children of a link or a collision that a URDF does not define are skipped with a
+// notice: a misspelt <collision> is geometry lost.
+std::map<std::string, LinkElements> check_collisions(const tinyxml2::XMLDocument& doc,
+                                                     const std::string& path,
+                                                     std::vector<std::string>* notices) {
+  std::map<std::string, LinkElements> links;
+  const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
+  for (const tinyxml2::XMLElement* link = robot->FirstChildElement("link"); link;
+       link = link->NextSiblingElement("link")) {
+    const std::string name = link->Attribute("name");
+    LinkElements& elements = links[name];
+    elements.link = link;
+    for (const tinyxml2::XMLElement* e = link->FirstChildElement(); e;
+         e = e->NextSiblingElement()) {
+      const std::string tag = e->Name();
+      if (tag == "collision") {
+        check_collision(*e, path, name, notices);
+        elements.collisions.push_back(e);
+      } else if (tag != "visual" && tag != "inertial" && notices) {
+        notices->push_back(path + ":" + std::to_string(e->GetLineNum()) + ": link '" + name +
+                           "': <" + tag + "> is not part of a URDF link; skipped");
+      }
+    }
+  }
+  return links;
+}
+
+// When urdfdom read fewer collisions of a link than the file holds (it drops them all
+// when it cannot read a <visual> or <inertial> of the link either), the error naming
+// the element it names, or the link.
+[[noreturn]] void collisions_dropped(const tinyxml2::XMLElement& link, const std::string& path,
+                                     const std::vector<std::string>& urdfdom_errors) {
+  const std::string name = link.Attribute("name");
+  // urdfdom logs why ("Unable to parse component [abc] ..."), then "Could not parse
+  // visual element for Link [NAME]".
+  std::string what = "this link", why;
+  const tinyxml2::XMLElement* culprit = &link;
+  for (std::size_t k = 0; k < urdfdom_errors.size(); ++k) {
+    if (urdfdom_errors[k].find("Link [" + name + "]") == std::string::npos) continue;
+    why = k > 0 ? urdfdom_errors[k - 1] : urdfdom_errors[k];
+    for (const char* tag : {"inertial", "visual", "collision"}) {
+      const tinyxml2::XMLElement* e = link.FirstChildElement(tag);
+      if (e &&
+          urdfdom_errors[k].find(std::string("parse ") + tag + " element") != std::string::npos) {
+        what = std::string("a <") + tag + ">";
+        culprit = e;
+      }
+    }
+    break;
+  }
+  throw InputError({path, culprit->GetLineNum(), "link '" + name + "'"},
+                   "urdfdom cannot read " + what + (why.empty() ? "" : " (" + why + ")") +
+                       " and so drops every collision of the link; fix it");
+}
+
 }  // namespace
 
 RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
-                     const SourceLocation& referenced_from) {
+                     const SourceLocation& referenced_from, std::vector<std::string>* notices) {
   const std::string xml = read_text_file(urdf_path, referenced_from, "URDF");
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
@@ -228,23 +406,25 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
                      std::string("not well-formed XML: ") + doc.ErrorName() + "; fix the file");
   }
   check_tree(doc, urdf_path);
-  const std::map<std::string, int> link_lines = element_lines(doc, "link");
+  const std::map<std::string, LinkElements> link_elements =
+      check_collisions(doc, urdf_path, notices);
   const std::map<std::string, int> joint_lines = element_lines(doc, "joint");
 
   urdf::ModelInterfaceSharedPtr model;
-  std::string parse_error;
+  std::vector<std::string> urdfdom_errors;
   {
     const std::lock_guard<std::mutex> lock(urdf_parser_mutex);
     CapturingOutputHandler handler;
     console_bridge::useOutputHandler(&handler);
     model = urdf::parseURDF(xml);
     console_bridge::restorePreviousOutputHandler();
-    parse_error = handler.first_error;
+    urdfdom_errors = std::move(handler.errors);
   }
   if (!model) {
-    throw InputError(
-        {urdf_path, 0, "robot"},
-        "URDF does not parse" + (parse_error.empty() ? "" : ": " + parse_error) + "; fix the file");
+    throw InputError({urdf_path, 0, "robot"},
+                     "URDF does not parse" +
+                         (urdfdom_errors.empty() ? "" : ": " + urdfdom_errors.front()) +
+                         "; fix the file");
   }
   auto line_of = [](const std::map<std::string, int>& lines, const std::string& name) {
     const auto it = lines.find(name);
@@ -266,12 +446,27 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
     link_index[link->name] = index;
     Link out;
     out.name = link->name;
-    const SourceLocation where{urdf_path, line_of(link_lines, link->name),
-                               "link '" + link->name + "' collision"};
-    for (const urdf::CollisionSharedPtr& collision : link->collision_array) {
-      if (!collision || !collision->geometry) continue;
-      out.collision.append(collision_geometry(*collision->geometry, urdf_folder, packages, where),
-                           to_isometry(collision->origin));
+    // urdfdom keeps a link's collisions in file order, so the i-th is the i-th element.
+    const auto found = link_elements.find(link->name);
+    if (found == link_elements.end()) {
+      throw InputError({urdf_path, 0, "link '" + link->name + "'"},
+                       "urdfdom reads a link name that the file does not hold as written (an "
+                       "XML entity in it?); write link names in plain characters");
+    }
+    const LinkElements& xml_link = found->second;
+    const std::vector<const tinyxml2::XMLElement*>& elements = xml_link.collisions;
+    if (link->collision_array.size() != elements.size()) {
+      collisions_dropped(*xml_link.link, urdf_path, urdfdom_errors);
+    }
+    for (std::size_t i = 0; i < elements.size(); ++i) {
+      const urdf::Collision& collision = *link->collision_array[i];
+      const tinyxml2::XMLElement* shape =
+          elements[i]->FirstChildElement("geometry")->FirstChildElement();
+      const SourceLocation where{urdf_path, shape->GetLineNum(),
+                                 "link '" + link->name + "' collision"};
+      out.collision.append(
+          collision_geometry(*collision.geometry, urdf_folder, packages, where, notices),
+          to_isometry(collision.origin));
     }
     if (link->parent_joint) {
       const urdf::Joint& j = *link->parent_joint;
@@ -311,7 +506,6 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
       }
       out.parent_joint = static_cast<int>(robot.joints.size());
       robot.joints.push_back(joint);
-      robot.disabled_pairs.emplace_back(joint.parent_link, joint.child_link);
     }
     robot.links.push_back(std::move(out));
     for (const urdf::LinkSharedPtr& child : link->child_links) queue.push_back(child);
@@ -333,7 +527,13 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
                        "master instead");
     }
   }
-  std::sort(robot.disabled_pairs.begin(), robot.disabled_pairs.end());
+  if (robot.triangle_count() == 0) {
+    const tinyxml2::XMLElement* root = doc.FirstChildElement("robot");
+    throw InputError({urdf_path, root->GetLineNum(), "robot '" + robot.name + "'"},
+                     "no link has collision geometry, so nothing can collide; add a <collision> "
+                     "with a <geometry> to each link that can hit something");
+  }
+  robot.disabled_pairs = adjacent_link_pairs(robot);
   return robot;
 }
 

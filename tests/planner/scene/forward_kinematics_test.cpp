@@ -19,10 +19,12 @@ constexpr double kPi = 3.14159265358979323846;
 //   -(continuous y at (0.2,0,0))-> l3 -(fixed at (0,0,1), rpy (pi/2,0,0))-> l4
 // l1 -(revolute z at (0,1,0), mimics j1: 2 q + 0.1)-> l5
 // base -(planar, floating)-> l6, l7 (held at their zero pose)
+// Only l4 carries collision geometry (a robot needs some).
 const char* kChainUrdf = R"(<?xml version="1.0"?>
 <robot name="chain">
   <link name="base"/>
-  <link name="l1"/> <link name="l2"/> <link name="l3"/> <link name="l4"/> <link name="l5"/>
+  <link name="l1"/> <link name="l2"/> <link name="l3"/> <link name="l5"/>
+  <link name="l4"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
   <link name="l6"/> <link name="l7"/>
   <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
     <origin xyz="1 0 0"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>

@@ -6,7 +6,10 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
+#include <vector>
 
+#include "gplanner/planner/scene/scene.h"
 #include "test_support.h"
 
 namespace gplanner {
@@ -52,9 +55,13 @@ std::string obj_text(const TriangleMesh& mesh) {
   return text;
 }
 
-// COLLADA in centimetres, declared Y_UP: ROS keeps meshes z-up whatever they say, but
-// honours the unit.
-std::string dae_text(const TriangleMesh& mesh) {
+// COLLADA with `asset` (by default: in centimetres, declared Y_UP) and `node` inside
+// the node instancing the mesh (a transform).
+const char* const kCentimetresYUp =
+    R"(<asset><unit name="centimeter" meter="0.01"/><up_axis>Y_UP</up_axis></asset>)";
+
+std::string dae_text(const TriangleMesh& mesh, const std::string& asset = kCentimetresYUp,
+                     const std::string& node = "") {
   std::string positions, indices;
   for (const Eigen::Vector3d& p : mesh.vertices) {
     positions +=
@@ -66,7 +73,8 @@ std::string dae_text(const TriangleMesh& mesh) {
   const std::string nv = std::to_string(mesh.vertices.size());
   return R"(<?xml version="1.0" encoding="utf-8"?>
 <COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
-<asset><unit name="centimeter" meter="0.01"/><up_axis>Y_UP</up_axis></asset>
+)" + asset +
+         R"(
 <library_geometries><geometry id="g"><mesh>
 <source id="p"><float_array id="pa" count=")" +
          std::to_string(3 * mesh.vertices.size()) + R"(">)" + positions +
@@ -77,7 +85,9 @@ std::string dae_text(const TriangleMesh& mesh) {
          std::to_string(mesh.triangles.size()) +
          R"("><input semantic="VERTEX" source="#v" offset="0"/><p>)" + indices +
          R"(</p></triangles></mesh></geometry></library_geometries>
-<library_visual_scenes><visual_scene id="s"><node id="n"><instance_geometry url="#g"/></node></visual_scene></library_visual_scenes>
+<library_visual_scenes><visual_scene id="s"><node id="n">)" +
+         node +
+         R"(<instance_geometry url="#g"/></node></visual_scene></library_visual_scenes>
 <scene><instance_visual_scene url="#s"/></scene></COLLADA>
 )";
 }
@@ -106,6 +116,134 @@ TEST(MeshLoader, ReadsStlObjAndCollada) {
   EXPECT_EQ(dae.triangle_count(), 12u);
   EXPECT_LT((dae.bounds().max() - Eigen::Vector3d(0.01, 0.02, 0.03)).norm(), 1e-7)
       << "expected centimetres applied and z kept up: " << dae.bounds().max().transpose();
+}
+
+// COLLADA up axes: MoveIt (geometric_shapes clears the root transform, in which
+// assimp turns a file to y up, as RViz does) and hpp-fcl (which skips the root node's
+// transform) read the coordinates as written, z up, whatever the file declares. So do
+// we; a file declaring another axis (or none: COLLADA's default is Y_UP) is noticed.
+TEST(MeshLoader, ColladaUpAxesAreIgnoredWithANotice) {
+  testing::ScratchFolder scratch;
+  TriangleMesh triangle;
+  triangle.vertices = {{1, 2, 3}, {4, 2, 3}, {1, 6, 3}};
+  triangle.triangles = {{0, 1, 2}};
+  // A node transform below the root still applies: +(10, 20, 30) cm.
+  const std::string translate = "<translate>10 20 30</translate>";
+  const std::vector<Eigen::Vector3d> expected = {
+      {0.11, 0.22, 0.33}, {0.14, 0.22, 0.33}, {0.11, 0.26, 0.33}};
+  struct Case {
+    std::string up_axis;  // the <up_axis> element, if any
+    std::string notice;   // what the notice must say; empty: no notice
+  };
+  const std::vector<Case> cases = {
+      {"<up_axis>Z_UP</up_axis>", ""},
+      {"<up_axis>Y_UP</up_axis>", "COLLADA up axis Y_UP ignored"},
+      {"<up_axis> X_UP </up_axis>", "COLLADA up axis X_UP ignored"},
+      {"", "COLLADA up axis Y_UP (COLLADA's default: the file declares none) ignored"}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.up_axis);
+    const std::string asset =
+        "<asset>\n<unit name=\"centimeter\" meter=\"0.01\"/>\n" + c.up_axis + "\n</asset>";
+    const std::string file = scratch.write("part.dae", dae_text(triangle, asset, translate));
+    std::vector<std::string> notices;
+    const TriangleMesh mesh = load_mesh(file, Eigen::Vector3d::Ones(), kWhere, &notices);
+    ASSERT_EQ(mesh.vertices.size(), 3u);
+    for (int v = 0; v < 3; ++v) {
+      EXPECT_LT((mesh.vertices[v] - expected[v]).norm(), 1e-7)
+          << "vertex " << v << ": " << mesh.vertices[v].transpose();
+    }
+    if (c.notice.empty()) {
+      EXPECT_TRUE(notices.empty()) << notices.front();
+      continue;
+    }
+    ASSERT_EQ(notices.size(), 1u);
+    // FILE:LINE (the <up_axis> line: the fifth) when the file declares an axis.
+    const std::string where = file + (c.up_axis.empty() ? ": " : ":5: ");
+    EXPECT_EQ(notices[0].rfind(where + c.notice, 0), 0u) << notices[0];
+    EXPECT_NE(notices[0].find("read as written, z up"), std::string::npos) << notices[0];
+    EXPECT_NE(notices[0].find(c.up_axis.find("X_UP") != std::string::npos ? "rpy=\"0 -1.5708 0\""
+                                                                          : "rpy=\"1.5708 0 0\""),
+              std::string::npos)
+        << notices[0];
+    // Once per file, however often it is loaded.
+    load_mesh(file, Eigen::Vector3d(2, 2, 2), kWhere, &notices);
+    EXPECT_EQ(notices.size(), 1u);
+  }
+}
+
+// The shipped COLLADA mesh declares Z_UP: no notice, and it loads as it always has (a
+// fuselage 12.7 m long along x, 4.6 m high along z).
+TEST(MeshLoader, ShippedHelicopterIsZUp) {
+  std::vector<std::string> notices;
+  const TriangleMesh mesh = load_mesh(testing::project_root() + "/robots/helicopter/helicopter.dae",
+                                      Eigen::Vector3d::Ones(), kWhere, &notices);
+  EXPECT_TRUE(notices.empty());
+  EXPECT_EQ(mesh.triangle_count(), 3620u);
+  EXPECT_LT((mesh.bounds().max() - Eigen::Vector3d(6.36197, 3.97394, 2.28636)).norm(), 1e-5)
+      << mesh.bounds().max().transpose();
+  EXPECT_LT((mesh.bounds().min() + Eigen::Vector3d(6.36197, 3.97394, 2.28636)).norm(), 1e-5)
+      << mesh.bounds().min().transpose();
+}
+
+// The notice reaches the scene's notices, which gplan prints on standard error.
+TEST(MeshLoader, UpAxisNoticeReachesTheScene) {
+  testing::ScratchFolder scratch;
+  scratch.write("robot.dae", dae_text(test_shape()));
+  const Scene scene = load_scene(scratch.write("scene.yaml", R"(name: y_up
+robot: {mesh: robot.dae}
+obstacles:
+  - box: [0.1, 0.1, 0.1]
+bounds: {min: [-1, -1, -1], max: [1, 1, 1]}
+start: {base: {xyz: [-0.5, 0, 0], quat_wxyz: [1, 0, 0, 0]}}
+goal: {base: {xyz: [0.5, 0, 0], quat_wxyz: [1, 0, 0, 0]}}
+)"));
+  ASSERT_EQ(scene.notices.size(), 1u);
+  EXPECT_EQ(
+      scene.notices[0].rfind(scratch.path() + "/robot.dae:3: COLLADA up axis Y_UP ignored", 0), 0u)
+      << scene.notices[0];
+}
+
+// A file whose own transforms flatten its triangles (a node scaled by zero, a zero unit)
+// is refused, as a zero scale is; before, it loaded as a speck nothing could touch.
+// Degenerate triangles of a file as written stay: a segment still collides (the
+// stability suite's degenerate robot).
+TEST(MeshLoader, RejectsMeshesFlattenedByTheirOwnTransforms) {
+  testing::ScratchFolder scratch;
+  TriangleMesh triangle;
+  triangle.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  triangle.triangles = {{0, 1, 2}};
+  const std::vector<std::string> files = {
+      scratch.write(
+          "zero_node_scale.dae",
+          dae_text(triangle, "<asset><up_axis>Z_UP</up_axis></asset>", "<scale>0 0 0</scale>")),
+      scratch.write(
+          "flat_node_scale.dae",
+          dae_text(triangle, "<asset><up_axis>Z_UP</up_axis></asset>", "<scale>1 1 0</scale>")),
+      scratch.write(
+          "zero_unit.dae",
+          dae_text(triangle, "<asset><unit meter=\"0\"/><up_axis>Z_UP</up_axis></asset>"))};
+  for (const std::string& file : files) {
+    try {
+      load_mesh(file, Eigen::Vector3d::Ones(), kWhere);
+      ADD_FAILURE() << file << " loaded";
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind("scene.yaml:7: robot.mesh: mesh '" + file + "'", 0), 0u) << message;
+      EXPECT_NE(message.find("flattened by its own transforms"), std::string::npos) << message;
+    }
+  }
+  const TriangleMesh segment =
+      load_mesh(scratch.write("segment.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"),
+                Eigen::Vector3d::Ones(), kWhere);
+  EXPECT_EQ(segment.triangle_count(), 1u);
+  // A binary STL of no triangles: assimp refuses it, and the error says what to give.
+  const std::string empty = scratch.write("empty.stl", std::string(84, '\0'));
+  try {
+    load_mesh(empty, Eigen::Vector3d::Ones(), kWhere);
+    ADD_FAILURE() << "empty.stl loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("at least one triangle"), std::string::npos) << e.what();
+  }
 }
 
 TEST(MeshLoader, ScalesAndMirrorsKeepingFacesOutward) {

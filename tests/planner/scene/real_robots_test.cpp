@@ -1,12 +1,19 @@
 // The real PR2 and Talos descriptions from ../shared/data load and answer a batch.
 
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/narrowphase/collision.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <random>
+#include <regex>
+#include <set>
+#include <sstream>
 
 #include "gplanner/planner/checkers/fcl_checker.h"
+#include "gplanner/planner/scene/forward_kinematics.h"
 #include "gplanner/planner/scene/scene.h"
 #include "gplanner/planner/scene/urdf_loader.h"
 #include "planner/scene_test_support.h"
@@ -85,6 +92,120 @@ TEST(RealRobots, TalosLoadsWithItsQuirks) {
   std::cout << "Talos: " << robot.links.size() << " links, " << robot.joints.size() << " joints, "
             << robot.triangle_count() << " triangles, " << robot.disabled_pairs.size()
             << " disabled pairs, " << robot.checked_pairs().size() << " checked\n";
+}
+
+using NamePair = std::pair<std::string, std::string>;
+
+NamePair named(const RobotModel& robot, int a, int b) {
+  return std::minmax(robot.links[a].name, robot.links[b].name);
+}
+
+// The SRDF's disable_collisions pairs giving `reason` (MoveIt Setup Assistant's
+// "Adjacent", "Default", "Never", ...), both links carrying geometry in `robot`.
+std::set<NamePair> srdf_pairs(const std::string& srdf, const std::string& reason,
+                              const RobotModel& robot) {
+  std::ifstream in(srdf);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string xml = text.str();
+  const std::regex pair("<disable_collisions link1=\"([^\"]+)\" link2=\"([^\"]+)\" reason=\"" +
+                        reason + "\"");
+  std::set<NamePair> pairs;
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), pair); it != std::sregex_iterator();
+       ++it) {
+    const int a = robot.find_link((*it)[1]), b = robot.find_link((*it)[2]);
+    if (a < 0 || b < 0 || robot.links[a].collision.empty() || robot.links[b].collision.empty())
+      continue;
+    pairs.insert(named(robot, a, b));
+  }
+  return pairs;
+}
+
+std::set<NamePair> adjacent_with_geometry(const RobotModel& robot) {
+  std::set<NamePair> pairs;
+  for (const auto& [a, b] : adjacent_link_pairs(robot)) {
+    if (!robot.links[a].collision.empty() && !robot.links[b].collision.empty())
+      pairs.insert(named(robot, a, b));
+  }
+  return pairs;
+}
+
+// The checked pairs that FCL finds colliding with every joint at 0 (or the nearest
+// limit) and mimic joints following: MoveIt's default pose, which its Setup Assistant
+// checks for "Default" pairs.
+std::set<NamePair> colliding_at_default_pose(const RobotModel& robot) {
+  std::vector<double> positions(robot.joints.size(), 0.0);
+  for (std::size_t j = 0; j < robot.joints.size(); ++j) {
+    const Joint& joint = robot.joints[j];
+    if (joint.is_single_dof()) positions[j] = std::min(std::max(0.0, joint.lower), joint.upper);
+  }
+  for (std::size_t j = 0; j < robot.joints.size(); ++j) {
+    const Joint& joint = robot.joints[j];
+    if (joint.mimic_joint >= 0)
+      positions[j] = joint.mimic_multiplier * positions[joint.mimic_joint] + joint.mimic_offset;
+  }
+  std::vector<Eigen::Isometry3d> X_WL;
+  forward_kinematics(robot, Eigen::Isometry3d::Identity(), positions.data(), &X_WL);
+  std::vector<std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>>> models(robot.links.size());
+  for (std::size_t l = 0; l < robot.links.size(); ++l) {
+    const TriangleMesh& mesh = robot.links[l].collision;
+    if (mesh.empty()) continue;
+    models[l] = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+    models[l]->beginModel();
+    for (const Eigen::Vector3i& t : mesh.triangles)
+      models[l]->addTriangle(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+    models[l]->endModel();
+  }
+  std::set<NamePair> colliding;
+  for (const auto& [a, b] : robot.checked_pairs()) {
+    const fcl::CollisionObjectd object_a(models[a], X_WL[a]), object_b(models[b], X_WL[b]);
+    fcl::CollisionResultd result;
+    if (fcl::collide(&object_a, &object_b, fcl::CollisionRequestd(), result) > 0)
+      colliding.insert(named(robot, a, b));
+  }
+  return colliding;
+}
+
+// Without its SRDF, a real robot's adjacent links are those MoveIt's Setup Assistant
+// wrote into the SRDF as "Adjacent" (pairs of links with collision geometry), and none
+// of the pairs colliding at the default pose is one of them: the robot does not report
+// its own joints as collisions. Returns the colliding pairs.
+std::set<NamePair> adjacency_is_moveits(const RealRobot& files, const std::string& robot_name) {
+  const RobotModel robot = load_urdf(files.urdf, files.packages, {"test", 0, "urdf"});
+  const std::set<NamePair> adjacent = adjacent_with_geometry(robot);
+  const std::set<NamePair> srdf_adjacent = srdf_pairs(files.srdf, "Adjacent", robot);
+  EXPECT_EQ(adjacent, srdf_adjacent);
+  const std::set<NamePair> colliding = colliding_at_default_pose(robot);
+  for (const NamePair& pair : colliding) {
+    EXPECT_EQ(srdf_adjacent.count(pair), 0u) << pair.first << " - " << pair.second;
+  }
+  std::cout << robot_name << " without SRDF: " << adjacent.size()
+            << " adjacent pairs with geometry, " << robot.checked_pairs().size() << " checked, "
+            << colliding.size() << " colliding at the default pose:";
+  for (const NamePair& pair : colliding) std::cout << " " << pair.first << "-" << pair.second;
+  std::cout << "\n";
+  return colliding;
+}
+
+TEST(RealRobots, Pr2AdjacencyWithoutSrdfIsMoveIts) {
+  REQUIRE_SHARED_DATA(data);
+  const RealRobot files = pr2(data);
+  const std::set<NamePair> colliding = adjacency_is_moveits(files, "PR2");
+  // Each is a pair the Setup Assistant found colliding at the default pose.
+  const RobotModel robot = load_urdf(files.urdf, files.packages, {"test", 0, "urdf"});
+  const std::set<NamePair> defaults = srdf_pairs(files.srdf, "Default", robot);
+  for (const NamePair& pair : colliding) {
+    EXPECT_EQ(defaults.count(pair), 1u)
+        << pair.first << " - " << pair.second << " collides but is no SRDF \"Default\" pair";
+  }
+}
+
+// Talos's SRDF was not written for this pose: at the zero pose its hands rest inside
+// its thighs (see TalosAnswersABatch), pairs the SRDF does not list; no joint among
+// the pairs that collide.
+TEST(RealRobots, TalosAdjacencyWithoutSrdfIsMoveIts) {
+  REQUIRE_SHARED_DATA(data);
+  adjacency_is_moveits(talos(data), "Talos");
 }
 
 // A scene around a real robot: no obstacles but a floor, a rest pose as start and goal.

@@ -507,7 +507,7 @@ TEST_F(SceneErrors, UnknownPackageInUrdfMesh) {
   const std::string scene = write("scene.yaml", ArmScene().text());
   EXPECT_TRUE(
       FailsWith([&] { load_scene(scene); }, {urdf,
-                                             line_of(text, "<link name=\"link2\">"),
+                                             line_of(text, "<mesh filename="),
                                              "link 'link2' collision",
                                              {"unknown package 'nosuch_pkg'", "packages"}}));
 }
@@ -529,7 +529,7 @@ TEST_F(SceneErrors, MalformedPackageUri) {
   const std::string scene = write("scene.yaml", arm.text());
   EXPECT_TRUE(
       FailsWith([&] { load_scene(scene); }, {urdf,
-                                             line_of(text, "<link name=\"link2\">"),
+                                             line_of(text, "<mesh filename="),
                                              "link 'link2' collision",
                                              {"malformed URI", "package:///meshes/box.obj"}}));
 }
@@ -545,7 +545,7 @@ TEST_F(SceneErrors, UrdfMeshMissing) {
   const std::string urdf = write("arm.urdf", text);
   const std::string scene = write("scene.yaml", ArmScene().text());
   EXPECT_TRUE(FailsWith([&] { load_scene(scene); }, {urdf,
-                                                     line_of(text, "<link name=\"link2\">"),
+                                                     line_of(text, "<mesh filename="),
                                                      "link 'link2' collision",
                                                      {"nosuch.obj", "does not exist"}}));
 }
@@ -702,7 +702,7 @@ TEST_F(SceneErrors, UrdfMeshWithNoTriangles) {
   const std::string scene = write("scene.yaml", ArmScene().text());
   EXPECT_TRUE(FailsWith(
       [&] { load_scene(scene); },
-      {urdf, line_of(text, "<link name=\"link2\">"), "link 'link2' collision", {"points.obj"}}));
+      {urdf, line_of(text, "<mesh filename="), "link 'link2' collision", {"points.obj"}}));
 }
 
 // --- start and goal ----------------------------------------------------------------------

@@ -51,7 +51,7 @@ struct RobotModel {
   std::vector<Link> links;  // links[0] is the root; parents before children
   std::vector<Joint> joints;
   // Link pairs (lower index first) never checked against each other: adjacent links
-  // and the SRDF's disable_collisions.
+  // (adjacent_link_pairs) and the SRDF's disable_collisions.
   std::vector<std::pair<int, int>> disabled_pairs;
   std::string srdf_file;
 
@@ -63,6 +63,13 @@ struct RobotModel {
   // disabled: the self-collision workload.
   std::vector<std::pair<int, int>> checked_pairs() const;
 };
+
+// Adjacent links, as MoveIt's Setup Assistant finds them (compute_default_collisions):
+// every parent and child joined by a joint, and every two links with collision geometry
+// joined through a chain of links without any (a geometry-less link joins its parent and
+// its children, so also two children of a geometry-less parent). Sorted, lower index
+// first.
+std::vector<std::pair<int, int>> adjacent_link_pairs(const RobotModel& robot);
 
 // A rigid body robot: one link holding `mesh`, driven by a floating base.
 RobotModel make_rigid_robot(const std::string& name, TriangleMesh mesh,

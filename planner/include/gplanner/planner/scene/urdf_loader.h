@@ -22,11 +22,17 @@ std::string resolve_resource(const std::string& uri, const std::string& base_fol
 // Loads a URDF: links in topological order, joints (revolute, continuous, prismatic,
 // fixed, floating, planar; limits; mimic), collision geometry as triangle meshes in the
 // link frame (meshes through assimp with the URDF scale, primitives tessellated).
-// Parent-child links joined by a joint are disabled pairs. Throws InputError naming
+// Adjacent links (adjacent_link_pairs) are disabled pairs. Throws InputError naming
 // the URDF (and the element and line where known) or `referenced_from` when the file
-// itself is missing.
+// itself is missing; a <collision> that cannot be read whole (an origin, size or scale
+// that is not finite numbers of the right count and sign, a missing or unknown shape)
+// and a robot without any collision geometry are errors, as is a link whose collisions
+// urdfdom drops for another element it cannot read. Elements a link or collision does
+// not define, and COLLADA up axes ignored (see load_mesh), are reported in `notices`
+// (when given), a line each.
 RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
-                     const SourceLocation& referenced_from);
+                     const SourceLocation& referenced_from,
+                     std::vector<std::string>* notices = nullptr);
 
 // Adds the SRDF's disable_collisions pairs. Elements outside what we use are skipped;
 // elements outside the SRDF core are reported once each in `notices`. A pair naming a

@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "gplanner/planner/scene/mesh_components.h"
 #include "gplanner/planner/scene/mesh_loader.h"
 
 namespace gplanner {
@@ -270,8 +271,12 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
                                "link '" + link->name + "' collision"};
     for (const urdf::CollisionSharedPtr& collision : link->collision_array) {
       if (!collision || !collision->geometry) continue;
-      out.collision.append(collision_geometry(*collision->geometry, urdf_folder, packages, where),
-                           to_isometry(collision->origin));
+      const TriangleMesh element =
+          collision_geometry(*collision->geometry, urdf_folder, packages, where);
+      // Solid where the element's own components are closed (docs/design.md, "Solids").
+      const std::vector<std::uint8_t> solid = closed_triangles(mesh_components(element));
+      out.collision.append(element, to_isometry(collision->origin));
+      out.solid.insert(out.solid.end(), solid.begin(), solid.end());
     }
     if (link->parent_joint) {
       const urdf::Joint& j = *link->parent_joint;

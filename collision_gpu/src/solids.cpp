@@ -14,15 +14,20 @@ namespace {
 struct Item {
   Eigen::Vector3d lo, hi;
   int component;  // index into FlatSolids::components
+  double size;    // see ComponentNode::size
 };
 
-// A node's box around items [begin, end), rounded outward to float.
-void fit_node(const std::vector<Item>& items, int begin, int end, ComponentNode* node) {
+// A node's box around items [begin, end), rounded outward to float, and its size: the
+// least of theirs (least_size) or the largest.
+void fit_node(const std::vector<Item>& items, int begin, int end, bool least_size,
+              ComponentNode* node) {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = -lo;
+  double size = items[begin].size;
   for (int i = begin; i < end; ++i) {
     lo = lo.cwiseMin(items[i].lo);
     hi = hi.cwiseMax(items[i].hi);
+    size = least_size ? std::min(size, items[i].size) : std::max(size, items[i].size);
   }
   const Eigen::Vector3d center = (lo + hi) / 2, extent = (hi - lo) / 2;
   const double slack =
@@ -31,12 +36,15 @@ void fit_node(const std::vector<Item>& items, int begin, int end, ComponentNode*
     node->center[k] = static_cast<float>(center[k]);
     node->extent[k] = static_cast<float>(extent[k] + slack);
   }
-  node->pad = 0;
+  // Rounded the conservative way: down for a least size, up for a largest.
+  node->size =
+      least_size ? static_cast<float>(size * (1 - 1e-6)) : static_cast<float>(size * (1 + 1e-6));
 }
 
 // A tree over the items (median split along the widest axis of their centres), its
 // nodes appended to `tree`; returns the root and adds its depth to *deepest.
-int build_tree(std::vector<Item> items, std::vector<ComponentNode>* tree, int* deepest) {
+int build_tree(std::vector<Item> items, bool least_size, std::vector<ComponentNode>* tree,
+               int* deepest) {
   if (items.empty()) return -1;
   struct Task {
     int node, begin, end, depth;
@@ -48,7 +56,7 @@ int build_tree(std::vector<Item> items, std::vector<ComponentNode>* tree, int* d
     const Task task = stack.back();
     stack.pop_back();
     *deepest = std::max(*deepest, task.depth);
-    fit_node(items, task.begin, task.end, &(*tree)[task.node]);
+    fit_node(items, task.begin, task.end, least_size, &(*tree)[task.node]);
     if (task.end - task.begin == 1) {
       (*tree)[task.node].child = -items[task.begin].component - 1;
       continue;
@@ -117,7 +125,10 @@ BodySolids FlatSolids::add_body(const std::vector<BodyComponent>& body) {
     flat.solid_triangle_offset = 0;
     const int index = static_cast<int>(components.size());
     const Eigen::Vector3d p(c.point[0], c.point[1], c.point[2]);
-    points.push_back({p, p, index});
+    const Eigen::Vector3d side(double(c.box_max[0]) - c.box_min[0],
+                               double(c.box_max[1]) - c.box_min[1],
+                               double(c.box_max[2]) - c.box_min[2]);
+    points.push_back({p, p, index, side.maxCoeff()});
     if (!c.solid.empty()) {
       flat.solid_node_offset = static_cast<std::int32_t>(nodes.size());
       flat.solid_triangle_offset = static_cast<std::int32_t>(triangles.size());
@@ -125,13 +136,14 @@ BodySolids FlatSolids::add_body(const std::vector<BodyComponent>& body) {
       triangles.insert(triangles.end(), c.solid.triangles.begin(), c.solid.triangles.end());
       deepest_bvh = std::max(deepest_bvh, bvh_depth(c.solid));
       solids.push_back({Eigen::Vector3d(c.box_min[0], c.box_min[1], c.box_min[2]),
-                        Eigen::Vector3d(c.box_max[0], c.box_max[1], c.box_max[2]), index});
+                        Eigen::Vector3d(c.box_max[0], c.box_max[1], c.box_max[2]), index,
+                        side.norm()});
     }
     components.push_back(flat);
   }
   BodySolids body_solids;
-  body_solids.points = build_tree(std::move(points), &tree, &deepest_tree);
-  body_solids.solids = build_tree(std::move(solids), &tree, &deepest_tree);
+  body_solids.points = build_tree(std::move(points), true, &tree, &deepest_tree);
+  body_solids.solids = build_tree(std::move(solids), false, &tree, &deepest_tree);
   return body_solids;
 }
 

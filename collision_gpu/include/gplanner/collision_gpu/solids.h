@@ -39,12 +39,16 @@ struct alignas(16) Component {
 
 // A node of a tree over components (32 bytes): an axis-aligned box in the body's frame;
 // inner nodes have children at child and child + 1, a leaf holds the component
-// -(child + 1) of SolidsView::components.
+// -(child + 1) of SolidsView::components. size: in a tree over points, the least longest
+// side of the boxes of the components below (no component below is smaller across); in
+// a tree over solid boxes, the largest diagonal (none is larger). A component inside
+// another is no larger, so a point subtree whose size exceeds a solid subtree's holds
+// nothing inside it.
 struct alignas(16) ComponentNode {
   float center[3];
   std::int32_t child;
   float extent[3];
-  float pad;
+  float size;
 
   GP_HD bool is_leaf() const { return child < 0; }
   GP_HD int component() const { return -child - 1; }

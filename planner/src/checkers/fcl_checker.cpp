@@ -82,6 +82,7 @@ struct FclChecker::Impl {
   BodySolids environment_solids;
   bool containment = false;
   double margin = 0;
+  double gjk_tolerance = 1e-6;
   std::vector<int> links_with_geometry;
   std::vector<std::pair<int, int>> checked_pairs;
   std::vector<Workspace> workspaces;
@@ -128,6 +129,7 @@ struct FclChecker::Impl {
     for (const auto& [a, b] : checked_pairs)
       containment = containment || either_holds(link_solids[a], link_solids[b]);
     margin = tolerance_delta(scene);
+    gjk_tolerance = std::min(1e-6, margin / 100);
 
     workspaces.resize(threads);
     for (Workspace& w : workspaces) {
@@ -177,6 +179,12 @@ struct FclChecker::Impl {
     if (!is_configuration(q)) return true;
     pose_links(q, w);
     fcl::CollisionRequestd request;  // one contact is enough for a verdict
+    // The primitives go through GJK, whose tolerance is absolute (1e-6 m by default: in a
+    // scene a few millimetres wide, many bands); a hundredth of the band instead, with
+    // FCL's own GJK (libccd's reported gaps of a few bands colliding in
+    // tests/stability/coplanar_test.cpp's millimetre scenes, FCL's own within 0.01 delta).
+    request.gjk_tolerance = gjk_tolerance;
+    request.gjk_solver_type = fcl::GST_INDEP;
     const auto touch = [&](fcl::CollisionObjectd* a, fcl::CollisionObjectd* b) {
       if (!a->getAABB().overlap(b->getAABB())) return false;
       fcl::CollisionResultd result;
@@ -215,6 +223,8 @@ struct FclChecker::Impl {
     if (collides(q, w)) return 0;
     double smallest = std::numeric_limits<double>::infinity();
     fcl::DistanceRequestd request;
+    request.distance_tolerance = gjk_tolerance;
+    request.gjk_solver_type = fcl::GST_INDEP;
     auto measure = [&](fcl::CollisionObjectd* a, fcl::CollisionObjectd* b) {
       fcl::DistanceResultd result;
       result.min_distance = smallest;

@@ -1,7 +1,7 @@
 #include "gplanner/planner/scene/mesh_components.h"
 
+#include <algorithm>
 #include <cstring>
-#include <map>
 #include <numeric>
 #include <sstream>
 #include <unordered_map>
@@ -68,20 +68,27 @@ MeshComponents mesh_components(const TriangleMesh& mesh, const std::vector<std::
   }
   out.count = static_cast<int>(component_of_root.size());
 
-  // Directed edges between union-find nodes (so components never share one), ordered so
-  // that the example edge a message names is the same from run to run.
-  std::map<std::uint64_t, int> edges;
+  // Directed edges between union-find nodes (so components never share one), sorted,
+  // so that equal edges lie together and the example edge a message names is the same
+  // from run to run.
   const auto key = [](int a, int b) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
            static_cast<std::uint32_t>(b);
   };
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * n);
   std::vector<std::uint8_t> has_area(out.count, 0);
   for (std::size_t t = 0; t < n; ++t) {
     const int v[3] = {node(t, 0), node(t, 1), node(t, 2)};
     if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;
     has_area[out.of_triangle[t]] = 1;
-    for (int k = 0; k < 3; ++k) ++edges[key(v[k], v[(k + 1) % 3])];
+    for (int k = 0; k < 3; ++k) edges.push_back(key(v[k], v[(k + 1) % 3]));
   }
+  std::sort(edges.begin(), edges.end());
+  const auto count_of = [&](std::uint64_t e) {
+    const auto range = std::equal_range(edges.begin(), edges.end(), e);
+    return range.second - range.first;
+  };
   out.closed.assign(out.count, 1);
   for (int c = 0; c < out.count; ++c)
     if (!has_area[c]) out.closed[c] = 0;
@@ -90,10 +97,14 @@ MeshComponents mesh_components(const TriangleMesh& mesh, const std::vector<std::
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v) position[welded[v]] = mesh.vertices[v];
   std::vector<std::size_t> unmatched(out.count, 0);
   bool example = false;
-  for (const auto& [edge, count] : edges) {
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t end = i + 1;
+    while (end < edges.size() && edges[end] == edges[i]) ++end;
+    const std::uint64_t edge = edges[i];
     const int a = static_cast<int>(edge >> 32), b = static_cast<int>(edge & 0xffffffffu);
-    const auto opposite = edges.find(key(b, a));
-    if (count == 1 && opposite != edges.end() && opposite->second == 1) continue;
+    const bool matched = end - i == 1 && count_of(key(b, a)) == 1;
+    i = end;
+    if (matched) continue;
     const int c = component_of_root.at(find(parent, a));
     out.closed[c] = 0;
     ++unmatched[c];

@@ -43,6 +43,11 @@ struct GpuBatchChecker::Impl {
   DeviceBuffer<BvhNode> nodes;
   DeviceBuffer<BvhTriangle> triangles;
   DeviceBuffer<std::int32_t> pair_a, pair_b;
+  DeviceBuffer<BodySolids> link_solids;
+  DeviceBuffer<Component> components;
+  DeviceBuffer<ComponentNode> component_tree;
+  DeviceBuffer<BvhNode> solid_nodes;
+  DeviceBuffer<BvhTriangle> solid_triangles;
 
   DeviceBuffer<float> configurations;
   DeviceBuffer<std::uint8_t> verdicts;
@@ -68,6 +73,11 @@ struct GpuBatchChecker::Impl {
     triangles.upload(host.triangles);
     pair_a.upload(host.pair_a);
     pair_b.upload(host.pair_b);
+    link_solids.upload(host.link_solids);
+    components.upload(host.solids.components);
+    component_tree.upload(host.solids.tree);
+    solid_nodes.upload(host.solids.nodes);
+    solid_triangles.upload(host.solids.triangles);
     counts.reserve(1);
     view = host.view();
     view.links = links.get();
@@ -77,6 +87,9 @@ struct GpuBatchChecker::Impl {
     view.triangles = triangles.get();
     view.pair_a = pair_a.get();
     view.pair_b = pair_b.get();
+    view.link_solids = link_solids.get();
+    view.solids = {components.get(), component_tree.get(), solid_nodes.get(),
+                   solid_triangles.get()};
     balanced.emplace(host, properties);
   }
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gplanner/collision_gpu/detail/containment.h"
 #include "gplanner/collision_gpu/detail/query.h"
 
 namespace gplanner {
@@ -74,6 +75,30 @@ FlatCollisionModel::FlatCollisionModel(const CollisionModel& model)
     throw std::invalid_argument("BVHs too deep for the traversal stack of " +
                                 std::to_string(detail::kStackSize) + " entries");
   }
+
+  if (!model.link_components.empty() && model.link_components.size() != links.size()) {
+    throw std::invalid_argument("a collision model needs components for every link or none");
+  }
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    link_solids.push_back(
+        model.link_components.empty() ? BodySolids{} : solids.add_body(model.link_components[l]));
+  }
+  environment_solids = solids.add_body(model.environment_components);
+  if (2 * solids.deepest_tree >= detail::kComponentStackSize ||
+      solids.deepest_bvh >= detail::kRayStackSize) {
+    throw std::invalid_argument(
+        "solid components too many or too deep for the stacks of the "
+        "containment step");
+  }
+  const auto either_holds = [](BodySolids a, BodySolids b) {
+    return (a.solids >= 0 && b.points >= 0) || (b.solids >= 0 && a.points >= 0);
+  };
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    if (link_bodies[l].node_offset >= 0 && environment.node_offset >= 0)
+      containment = containment || either_holds(link_solids[l], environment_solids);
+  }
+  for (std::size_t p = 0; p < pair_a.size(); ++p)
+    containment = containment || either_holds(link_solids[pair_a[p]], link_solids[pair_b[p]]);
 }
 
 CollisionModelView FlatCollisionModel::view() const {
@@ -93,6 +118,10 @@ CollisionModelView FlatCollisionModel::view() const {
   v.pair_count = static_cast<std::int32_t>(pair_a.size());
   v.pair_a = pair_a.data();
   v.pair_b = pair_b.data();
+  v.containment = containment ? 1 : 0;
+  v.link_solids = link_solids.data();
+  v.environment_solids = environment_solids;
+  v.solids = solids.view();
   return v;
 }
 

@@ -448,7 +448,26 @@ __global__ void balanced_start_kernel(BalancedState* d_state, unsigned task_capa
   c.queue_full = 0;
   advance_queue(c, task_capacity, max_launch);
 }
+
+// After the traversal, a thread per query that no surface test found colliding: its
+// link poses again, and the containment step (query_contained). Launched only for
+// models with solids on either side of some checked body.
+__global__ void balanced_contained_kernel(CollisionModelView m, const float* d_q, int n,
+                                          std::uint8_t* d_verdicts) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n || d_verdicts[i]) return;  // rows that are no configuration are marked already
+  detail::Xf X_WL[detail::kMaxLinks];
+  detail::link_poses(m, d_q + static_cast<std::size_t>(i) * m.width, X_WL);
+  if (detail::query_contained(m, X_WL)) d_verdicts[i] = 1;
+}
 }  // namespace
+
+void BalancedTraversal::run_containment(const CollisionModelView& m, const float* d_q, int n,
+                                        std::uint8_t* d_verdicts) {
+  if (!m.containment) return;
+  balanced_contained_kernel<<<blocks_for(n, 128), 128>>>(m, d_q, n, d_verdicts);
+  check_cuda(cudaGetLastError(), "balanced containment kernel");
+}
 
 BalancedTraversal::BalancedTraversal(const FlatCollisionModel& host,
                                      const cudaDeviceProp& properties) {
@@ -545,6 +564,7 @@ bool BalancedTraversal::run(const CollisionModelView& m, const float* d_q, int n
     stats->warp_per_pair = true;
     const BalancedState c = read_state();
     if (c.jobs_overflow) return false;
+    run_containment(m, d_q, n, d_verdicts);
     stats->jobs += c.jobs;
     return true;
   }
@@ -578,6 +598,7 @@ bool BalancedTraversal::run(const CollisionModelView& m, const float* d_q, int n
       throw std::runtime_error("balanced traversal: task queue full; lower the batch size");
     if (c.finish || c.top == 0) break;
   }
+  run_containment(m, d_q, n, d_verdicts);
   stats->rounds += c.rounds;
   stats->jobs += c.jobs;
   if (c.finish) stats->finished_tasks += c.top;

@@ -76,6 +76,9 @@ class BalancedTraversal {
 
  private:
   BalancedState read_state();
+  // The containment step of the queries the traversal left free.
+  void run_containment(const CollisionModelView& m, const float* d_q, int n,
+                       std::uint8_t* d_verdicts);
 
   int resident_task_blocks_ = 1;  // blocks of each kernel resident at once
   int resident_leaf_blocks_ = 1;

@@ -152,6 +152,8 @@ __global__ void packet_kernel(CollisionModelView m, const float* d_q, int n,
                       &collided, &counts);
     }
   }
+  // Each lane whose surfaces met nowhere: the containment step on its own.
+  if (valid && !collided) collided = detail::query_contained(m, X_WL);
   if (valid) d_verdicts[query] = collided ? 1 : 0;
   add_counts(counts, d_counts);
 }

@@ -6,17 +6,19 @@
 #include <cmath>
 #include <limits>
 
+#include "gplanner/collision_gpu/detail/containment.h"
 #include "gplanner/common/parallel_for.h"
 #include "gplanner/common/scratch_pool.h"
 #include "gplanner/planner/scene/forward_kinematics.h"
+#include "gplanner/planner/scene/scene_collision_model.h"
 
 namespace gplanner {
 namespace {
 
-using Bvh = fcl::BVHModel<fcl::OBBRSSd>;
+using FclBvh = fcl::BVHModel<fcl::OBBRSSd>;
 
-std::shared_ptr<Bvh> build_bvh(const TriangleMesh& mesh) {
-  auto bvh = std::make_shared<Bvh>();
+std::shared_ptr<FclBvh> build_bvh(const TriangleMesh& mesh) {
+  auto bvh = std::make_shared<FclBvh>();
   std::vector<fcl::Triangle> triangles;
   triangles.reserve(mesh.triangles.size());
   for (const Eigen::Vector3i& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
@@ -27,11 +29,37 @@ std::shared_ptr<Bvh> build_bvh(const TriangleMesh& mesh) {
   return bvh;
 }
 
+// A solid box, sphere or cylinder obstacle as FCL's own primitive, as MoveIt checks them.
+std::shared_ptr<fcl::CollisionGeometryd> fcl_primitive(const Obstacle& obstacle) {
+  const Eigen::Vector3d& d = obstacle.dimensions;
+  switch (obstacle.shape) {
+    case ObstacleShape::kBox:
+      return std::make_shared<fcl::Boxd>(d.x(), d.y(), d.z());
+    case ObstacleShape::kSphere:
+      return std::make_shared<fcl::Sphered>(d.x());
+    case ObstacleShape::kCylinder:
+      return std::make_shared<fcl::Cylinderd>(d.x(), d.y());
+    case ObstacleShape::kMesh:
+      break;
+  }
+  return nullptr;
+}
+
+geometry::Transform<double> to_transform(const Eigen::Isometry3d& X) {
+  geometry::Transform<double> out;
+  for (int i = 0; i < 3; ++i) {
+    out.R.r[i] = {X.linear()(i, 0), X.linear()(i, 1), X.linear()(i, 2)};
+  }
+  out.t = {X.translation().x(), X.translation().y(), X.translation().z()};
+  return out;
+}
+
 // What one call needs to answer queries on one thread: its own collision objects (FCL
-// objects carry their pose) over the shared, read-only BVHs.
+// objects carry their pose) over the shared, read-only BVHs and shapes.
 struct Workspace {
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> links;  // null for links without geometry
-  std::unique_ptr<fcl::CollisionObjectd> environment;
+  std::unique_ptr<fcl::CollisionObjectd> environment;         // the mesh obstacles
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> primitives;
   std::vector<double> joint_positions;
   std::vector<Eigen::Isometry3d> X_WL;
 };
@@ -41,8 +69,21 @@ struct Workspace {
 struct FclChecker::Impl {
   const Scene& scene;
   int threads;
-  std::vector<std::shared_ptr<Bvh>> link_bvhs;
-  std::shared_ptr<Bvh> environment_bvh;
+  std::vector<std::shared_ptr<FclBvh>> link_bvhs;
+  std::shared_ptr<FclBvh> environment_bvh;
+  // Solid primitive obstacles: FCL's shapes, their poses in S, their allowances.
+  std::vector<std::shared_ptr<fcl::CollisionGeometryd>> primitives;
+  std::vector<Eigen::Isometry3d> X_SP;
+  std::vector<double> allowances;
+  // The containment rule of the collision core (detail/containment.h), on the same
+  // components (the solid primitives as their centres: FCL's primitives are solid
+  // already), in double from FCL's own poses.
+  FlatSolids solids;
+  std::vector<BodySolids> link_solids;
+  BodySolids environment_solids;
+  bool containment = false;
+  double margin = 0;
+  double gjk_tolerance = 1e-6;
   std::vector<int> links_with_geometry;
   std::vector<std::pair<int, int>> checked_pairs;
   // Made in the constructor, and copied for each new workspace: FCL's constructor of a
@@ -68,9 +109,33 @@ struct FclChecker::Impl {
       link_bvhs[l] = build_bvh(robot.links[l].collision);
       links_with_geometry.push_back(static_cast<int>(l));
     }
-    const TriangleMesh environment = scene.environment_mesh();
+    TriangleMesh environment;
+    for (const Obstacle& obstacle : scene.obstacles) {
+      if (obstacle.is_solid_primitive()) {
+        primitives.push_back(fcl_primitive(obstacle));
+        X_SP.push_back(obstacle.X_SO);
+        allowances.push_back(obstacle.allowance_m);
+      } else {
+        environment.append(obstacle.mesh_S);
+      }
+    }
     if (!environment.empty()) environment_bvh = build_bvh(environment);
     checked_pairs = robot.checked_pairs();
+
+    for (const Link& link : robot.links)
+      link_solids.push_back(
+          solids.add_body(mesh_body_components(link.collision, link_solid_triangles(link))));
+    environment_solids = solids.add_body(environment_components(scene, true));
+    const auto either_holds = [](BodySolids a, BodySolids b) {
+      return (a.solids >= 0 && b.points >= 0) || (b.solids >= 0 && a.points >= 0);
+    };
+    for (int l : links_with_geometry)
+      containment = containment || either_holds(link_solids[l], environment_solids);
+    for (const auto& [a, b] : checked_pairs)
+      containment = containment || either_holds(link_solids[a], link_solids[b]);
+    margin = tolerance_delta(scene);
+    gjk_tolerance = std::min(1e-6, margin / 100);
+
     prototype.links.resize(robot.links.size());
     for (int l : links_with_geometry) {
       prototype.links[l] = std::make_unique<fcl::CollisionObjectd>(link_bvhs[l]);
@@ -78,6 +143,11 @@ struct FclChecker::Impl {
     if (environment_bvh) {
       prototype.environment = std::make_unique<fcl::CollisionObjectd>(environment_bvh);
       prototype.environment->computeAABB();
+    }
+    for (std::size_t i = 0; i < primitives.size(); ++i) {
+      prototype.primitives.push_back(
+          std::make_unique<fcl::CollisionObjectd>(primitives[i], X_SP[i]));
+      prototype.primitives.back()->computeAABB();
     }
     prototype.joint_positions.resize(robot.joints.size());
   }
@@ -92,6 +162,8 @@ struct FclChecker::Impl {
     if (prototype.environment) {
       w->environment = std::make_unique<fcl::CollisionObjectd>(*prototype.environment);
     }
+    for (const auto& primitive : prototype.primitives)
+      w->primitives.push_back(std::make_unique<fcl::CollisionObjectd>(*primitive));
     w->joint_positions = prototype.joint_positions;
     return w;
   }
@@ -126,15 +198,42 @@ struct FclChecker::Impl {
     if (!is_configuration(q)) return true;
     pose_links(q, w);
     fcl::CollisionRequestd request;  // one contact is enough for a verdict
-    for (int l : links_with_geometry) {
-      if (!w->environment || !w->links[l]->getAABB().overlap(w->environment->getAABB())) continue;
+    // The primitives go through GJK, whose tolerance is absolute (1e-6 m by default: in a
+    // scene a few millimetres wide, many bands); a hundredth of the band instead, with
+    // FCL's own GJK (libccd's reported gaps of a few bands colliding in
+    // tests/stability/coplanar_test.cpp's millimetre scenes, FCL's own within 0.01 delta).
+    request.gjk_tolerance = gjk_tolerance;
+    request.gjk_solver_type = fcl::GST_INDEP;
+    const auto touch = [&](fcl::CollisionObjectd* a, fcl::CollisionObjectd* b) {
+      if (!a->getAABB().overlap(b->getAABB())) return false;
       fcl::CollisionResultd result;
-      if (fcl::collide(w->links[l].get(), w->environment.get(), request, result) > 0) return true;
+      return fcl::collide(a, b, request, result) > 0;
+    };
+    for (int l : links_with_geometry) {
+      if (w->environment && touch(w->links[l].get(), w->environment.get())) return true;
+      for (const auto& primitive : w->primitives)
+        if (touch(w->links[l].get(), primitive.get())) return true;
     }
     for (const auto& [a, b] : checked_pairs) {
-      if (!w->links[a]->getAABB().overlap(w->links[b]->getAABB())) continue;
-      fcl::CollisionResultd result;
-      if (fcl::collide(w->links[a].get(), w->links[b].get(), request, result) > 0) return true;
+      if (touch(w->links[a].get(), w->links[b].get())) return true;
+    }
+    return contained(*w);
+  }
+
+  // After no surfaces met: the core's containment rule on the same components, with
+  // FCL's double poses (docs/design.md, "Solids").
+  bool contained(const Workspace& w) const {
+    if (!containment) return false;
+    const SolidsView view = solids.view();
+    for (int l : links_with_geometry) {
+      if (detail::either_inside(view, environment_solids, link_solids[l], to_transform(w.X_WL[l]),
+                                margin))
+        return true;
+    }
+    for (const auto& [a, b] : checked_pairs) {
+      if (detail::either_inside(view, link_solids[a], link_solids[b],
+                                to_transform(w.X_WL[a].inverse() * w.X_WL[b]), margin))
+        return true;
     }
     return false;
   }
@@ -143,6 +242,8 @@ struct FclChecker::Impl {
     if (collides(q, w)) return 0;
     double smallest = std::numeric_limits<double>::infinity();
     fcl::DistanceRequestd request;
+    request.distance_tolerance = gjk_tolerance;
+    request.gjk_solver_type = fcl::GST_INDEP;
     auto measure = [&](fcl::CollisionObjectd* a, fcl::CollisionObjectd* b) {
       fcl::DistanceResultd result;
       result.min_distance = smallest;
@@ -151,6 +252,16 @@ struct FclChecker::Impl {
     };
     for (int l : links_with_geometry) {
       if (w->environment) measure(w->links[l].get(), w->environment.get());
+    }
+    // A primitive whose tessellation lies outside it by more than the band: its
+    // distance less that allowance (Obstacle::allowance_m).
+    for (std::size_t i = 0; i < primitives.size(); ++i) {
+      for (int l : links_with_geometry) {
+        fcl::DistanceResultd result;
+        result.min_distance = smallest + allowances[i];
+        fcl::distance(w->links[l].get(), w->primitives[i].get(), request, result);
+        smallest = std::min(smallest, std::max(0.0, result.min_distance - allowances[i]));
+      }
     }
     for (const auto& [a, b] : checked_pairs) measure(w->links[a].get(), w->links[b].get());
     return smallest;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <set>
 
+#include "gplanner/planner/scene/mesh_components.h"
+
 namespace gplanner {
 
 const char* joint_type_name(JointType type) {
@@ -96,6 +98,7 @@ RobotModel make_rigid_robot(const std::string& name, TriangleMesh mesh,
   robot.source_file = source_file;
   Link body;
   body.name = name;
+  body.solid = closed_triangles(mesh_components(mesh));
   body.collision = std::move(mesh);
   robot.links.push_back(std::move(body));
   return robot;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gplanner/planner/scene/forward_kinematics.h"
+#include "gplanner/planner/scene/mesh_components.h"
 
 namespace gplanner {
 namespace {
@@ -174,6 +175,16 @@ double robot_reach(const RobotModel& robot, const ConfigurationSpace& space) {
   return reach;
 }
 
+std::vector<std::uint8_t> link_solid_triangles(const Link& link) {
+  if (link.solid.size() == link.collision.triangle_count()) return link.solid;
+  return closed_triangles(mesh_components(link.collision));
+}
+
+std::vector<std::uint8_t> obstacle_solid_triangles(const Obstacle& obstacle) {
+  if (obstacle.solid.size() == obstacle.mesh_S.triangle_count()) return obstacle.solid;
+  return closed_triangles(mesh_components(obstacle.mesh_S));
+}
+
 std::size_t drop_unreachable_obstacle_triangles(Scene* scene) {
   const ConfigurationSpace& space = scene->space;
   const double reach = robot_reach(scene->robot, space);
@@ -185,19 +196,131 @@ std::size_t drop_unreachable_obstacle_triangles(Scene* scene) {
                                    base_region.max().array() + grow);
   std::size_t dropped = 0;
   for (Obstacle& obstacle : scene->obstacles) {
-    std::vector<Eigen::Vector3i> kept;
-    for (const Eigen::Vector3i& t : obstacle.mesh_S.triangles) {
-      Eigen::AlignedBox3d box;
-      for (int k = 0; k < 3; ++k) box.extend(obstacle.mesh_S.vertices[t[k]]);
-      if (box.intersects(region)) kept.push_back(t);
+    const TriangleMesh& mesh = obstacle.mesh_S;
+    const std::vector<std::uint8_t> solid = obstacle_solid_triangles(obstacle);
+    const MeshComponents components = mesh_components(mesh, solid);
+    // A solid component is kept whole when its box meets the region: it may hold it.
+    std::vector<Eigen::AlignedBox3d> solid_boxes(components.count);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      if (!solid[t]) continue;
+      for (int k = 0; k < 3; ++k)
+        solid_boxes[components.of_triangle[t]].extend(mesh.vertices[mesh.triangles[t][k]]);
     }
-    dropped += obstacle.mesh_S.triangles.size() - kept.size();
+    std::vector<Eigen::Vector3i> kept;
+    std::vector<std::uint8_t> kept_solid;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      Eigen::AlignedBox3d box;
+      if (solid[t]) {
+        box = solid_boxes[components.of_triangle[t]];
+      } else {
+        for (int k = 0; k < 3; ++k) box.extend(mesh.vertices[mesh.triangles[t][k]]);
+      }
+      if (!box.intersects(region)) continue;
+      kept.push_back(mesh.triangles[t]);
+      kept_solid.push_back(solid[t]);
+    }
+    dropped += mesh.triangles.size() - kept.size();
     obstacle.mesh_S.triangles = std::move(kept);
+    obstacle.solid = std::move(kept_solid);
   }
   scene->obstacles.erase(std::remove_if(scene->obstacles.begin(), scene->obstacles.end(),
                                         [](const Obstacle& o) { return o.mesh_S.empty(); }),
                          scene->obstacles.end());
   return dropped;
+}
+
+std::vector<BodyComponent> mesh_body_components(const TriangleMesh& mesh,
+                                                const std::vector<std::uint8_t>& solid) {
+  std::vector<BodyComponent> out;
+  if (mesh.empty()) return out;
+  const MeshComponents components = mesh_components(mesh, solid);
+  std::vector<std::vector<int>> triangles(components.count);
+  std::vector<std::uint8_t> is_solid(components.count, 0);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const int c = components.of_triangle[t];
+    for (int k = 0; k < 3; ++k) triangles[c].push_back(mesh.triangles[t][k]);
+    is_solid[c] = solid[t];
+  }
+  std::vector<double> vertices;
+  vertices.reserve(3 * mesh.vertices.size());
+  for (const Eigen::Vector3d& p : mesh.vertices)
+    vertices.insert(vertices.end(), {p.x(), p.y(), p.z()});
+  for (int c = 0; c < components.count; ++c) {
+    out.push_back(make_body_component(vertices.data(), static_cast<int>(mesh.vertices.size()),
+                                      triangles[c].data(),
+                                      static_cast<int>(triangles[c].size() / 3), is_solid[c]));
+  }
+  return out;
+}
+
+std::vector<BodyComponent> environment_components(const Scene& scene, bool exact_primitives) {
+  std::vector<BodyComponent> out;
+  for (const Obstacle& obstacle : scene.obstacles) {
+    if (exact_primitives && obstacle.is_solid_primitive()) {
+      BodyComponent centre;
+      const Eigen::Vector3d c = obstacle.X_SO.translation();
+      const Eigen::AlignedBox3d box = obstacle.mesh_S.bounds();
+      for (int k = 0; k < 3; ++k) {
+        centre.point[k] = static_cast<float>(c[k]);
+        centre.box_min[k] = static_cast<float>(box.min()[k]);
+        centre.box_max[k] = static_cast<float>(box.max()[k]);
+      }
+      out.push_back(centre);
+      continue;
+    }
+    std::vector<BodyComponent> parts =
+        mesh_body_components(obstacle.mesh_S, obstacle_solid_triangles(obstacle));
+    for (BodyComponent& part : parts) out.push_back(std::move(part));
+  }
+  return out;
+}
+
+void refine_primitive_obstacles(Scene* scene) {
+  constexpr int kSphereSegments = 256, kCylinderSegments = 4096;
+  const double kPi = std::acos(-1.0);
+  const double target = tolerance_delta(*scene) / 5;
+  const auto even_segments = [](double n, int most) {
+    const int whole = static_cast<int>(std::ceil(std::min(n, double(most))));
+    return std::max(24, whole + (whole & 1));
+  };
+  std::vector<std::pair<Obstacle*, double>> refined;  // and the excess of each
+  for (Obstacle& obstacle : scene->obstacles) {
+    if (!obstacle.is_solid_primitive() || obstacle.shape == ObstacleShape::kBox) continue;
+    const double radius = obstacle.dimensions.x();
+    TriangleMesh mesh;
+    double excess = 0;
+    if (obstacle.shape == ObstacleShape::kSphere) {
+      // excess = radius * tan^2(pi / n) with n / 2 rings.
+      int n = even_segments(kPi / std::atan(std::sqrt(target / radius)), kSphereSegments);
+      while (n < kSphereSegments && sphere_tessellation_excess(radius, n / 2, n) > target) n += 2;
+      mesh = make_sphere(radius, n / 2, n);
+      excess = sphere_tessellation_excess(radius, n / 2, n);
+    } else {
+      int n = even_segments(kPi / std::acos(1 / (1 + target / radius)), kCylinderSegments);
+      while (n < kCylinderSegments && cylinder_tessellation_excess(radius, n) > target) n += 2;
+      mesh = make_cylinder(radius, obstacle.dimensions.y(), n);
+      excess = cylinder_tessellation_excess(radius, n);
+    }
+    obstacle.mesh_S = transformed(mesh, obstacle.X_SO);
+    obstacle.solid.assign(obstacle.mesh_S.triangle_count(), 1);
+    refined.emplace_back(&obstacle, excess);
+  }
+  // The band again: the finer tessellations may have made the scene a little smaller.
+  const double delta = tolerance_delta(*scene);
+  for (auto [obstacle, excess] : refined) {
+    if (excess <= delta / 4) continue;
+    obstacle->allowance_m = excess;
+    std::ostringstream notice;
+    notice << std::setprecision(3) << "obstacle '" << obstacle->name << "' ("
+           << obstacle->defined.file << ":" << obstacle->defined.line << "): the "
+           << (obstacle->shape == ObstacleShape::kSphere ? "sphere" : "cylinder")
+           << "'s tessellation lies up to " << excess
+           << " m outside it, more than the tolerance band allows (" << delta
+           << " m): the cpu and gpu backends may report a collision up to that far from it "
+              "(gplan check --compare counts those within the band); give it as a mesh to "
+              "choose its triangles";
+    scene->notices.push_back(notice.str());
+  }
 }
 
 CollisionModel build_collision_model(const Scene& scene) {
@@ -244,6 +367,10 @@ CollisionModel build_collision_model(const Scene& scene) {
     model.link_bvhs.push_back(mesh_bvh(link.collision));
   }
   model.environment = mesh_bvh(scene.environment_mesh());
+  for (const Link& link : robot.links)
+    model.link_components.push_back(
+        mesh_body_components(link.collision, link_solid_triangles(link)));
+  model.environment_components = environment_components(scene, false);
   for (const auto& [a, b] : robot.checked_pairs()) {
     model.pair_a.push_back(a);
     model.pair_b.push_back(b);

@@ -1,5 +1,6 @@
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +10,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "gplanner/planner/scene/mesh_components.h"
 #include "gplanner/planner/scene/mesh_loader.h"
 #include "gplanner/planner/scene/scene.h"
 #include "gplanner/planner/scene/scene_collision_model.h"
@@ -431,16 +433,26 @@ std::vector<double> read_configuration(const YamlReader& in, const YAML::Node& n
 void read_obstacles(const YamlReader& in, const YAML::Node& node, Scene* scene) {
   if (!node) return;
   if (!node.IsSequence()) in.fail(node, "obstacles", "expected a list of obstacles");
+  std::set<std::string> noticed;  // files whose open components a notice named
   for (std::size_t i = 0; i < node.size(); ++i) {
     const YAML::Node item = node[i];
     const std::string key = "obstacles[" + std::to_string(i) + "]";
-    in.expect_map(item, key, {"name", "mesh", "box", "sphere", "cylinder", "pose", "scale"});
+    in.expect_map(item, key,
+                  {"name", "mesh", "box", "sphere", "cylinder", "pose", "scale", "solid"});
     int shapes = 0;
     for (const char* shape : {"mesh", "box", "sphere", "cylinder"})
       shapes += item[shape].IsDefined();
     if (shapes != 1) in.fail(item, key, "give exactly one of mesh, box, sphere, cylinder");
     if (item["scale"] && !item["mesh"])
       in.fail(item["scale"], key + ".scale", "scale applies to meshes only");
+    // solid: absent (closed components solid, open ones surfaces), true or false.
+    int solid_key = -1;
+    if (item["solid"]) {
+      bool value = false;
+      if (!item["solid"].IsScalar() || !YAML::convert<bool>::decode(item["solid"], value))
+        in.fail(item["solid"], key + ".solid", "expected true or false");
+      solid_key = value ? 1 : 0;
+    }
     Obstacle obstacle;
     obstacle.defined = in.at(item, key);
     TriangleMesh mesh;
@@ -452,35 +464,85 @@ void read_obstacles(const YamlReader& in, const YAML::Node& node, Scene* scene) 
         in.fail(item["scale"], key + ".scale", "a zero scale flattens the mesh");
       mesh = load_mesh(path, scale, in.at(item["mesh"], key + ".mesh"), &scene->notices);
       obstacle.name = fs::path(path).stem().string();
-    } else if (item["box"]) {
-      const Eigen::Vector3d size = in.vector3(item["box"], key + ".box");
-      if ((size.array() <= 0).any())
-        in.fail(item["box"], key + ".box", "side lengths must be positive");
-      mesh = make_box(size);
-      obstacle.name = "box";
-    } else if (item["sphere"]) {
-      const double radius = in.number(item["sphere"], key + ".sphere");
-      if (radius <= 0) in.fail(item["sphere"], key + ".sphere", "the radius must be positive");
-      mesh = make_sphere(radius);
-      obstacle.name = "sphere";
+      obstacle.file = path;
+      if (solid_key == 0) {
+        obstacle.solid.assign(mesh.triangle_count(), 0);
+      } else {
+        const MeshComponents components = mesh_components(mesh);
+        if (components.open_count > 0 && solid_key == 1) {
+          in.fail(item["solid"], key + ".solid",
+                  "mesh '" + path + "' is not closed: " + describe_open_components(components) +
+                      "; repair it, or leave solid: out to make its closed components solid and "
+                      "its open ones surfaces");
+        }
+        if (components.open_count > 0 && noticed.insert(path).second) {
+          scene->notices.push_back(
+              path + ": " + describe_open_components(components) +
+              "; open components are surfaces (a robot wholly inside one is not in collision), "
+              "closed ones solid; add solid: false to the obstacle to make it all a surface");
+        }
+        obstacle.solid = closed_triangles(components);
+      }
     } else {
-      const YAML::Node c = item["cylinder"];
-      in.expect_map(c, key + ".cylinder", {"radius", "length"});
-      const double radius =
-          in.number(in.required(c, key + ".cylinder", "radius"), key + ".cylinder.radius");
-      const double length =
-          in.number(in.required(c, key + ".cylinder", "length"), key + ".cylinder.length");
-      if (radius <= 0 || length <= 0)
-        in.fail(c, key + ".cylinder", "radius and length must be positive");
-      mesh = make_cylinder(radius, length);
-      obstacle.name = "cylinder";
+      if (item["box"]) {
+        const Eigen::Vector3d size = in.vector3(item["box"], key + ".box");
+        if ((size.array() <= 0).any())
+          in.fail(item["box"], key + ".box", "side lengths must be positive");
+        mesh = make_box(size);
+        obstacle.name = "box";
+        obstacle.shape = ObstacleShape::kBox;
+        obstacle.dimensions = size;
+      } else if (item["sphere"]) {
+        const double radius = in.number(item["sphere"], key + ".sphere");
+        if (radius <= 0) in.fail(item["sphere"], key + ".sphere", "the radius must be positive");
+        mesh = make_sphere(radius);
+        obstacle.name = "sphere";
+        obstacle.shape = ObstacleShape::kSphere;
+        obstacle.dimensions = Eigen::Vector3d(radius, 0, 0);
+      } else {
+        const YAML::Node c = item["cylinder"];
+        in.expect_map(c, key + ".cylinder", {"radius", "length"});
+        const double radius =
+            in.number(in.required(c, key + ".cylinder", "radius"), key + ".cylinder.radius");
+        const double length =
+            in.number(in.required(c, key + ".cylinder", "length"), key + ".cylinder.length");
+        if (radius <= 0 || length <= 0)
+          in.fail(c, key + ".cylinder", "radius and length must be positive");
+        mesh = make_cylinder(radius, length);
+        obstacle.name = "cylinder";
+        obstacle.shape = ObstacleShape::kCylinder;
+        obstacle.dimensions = Eigen::Vector3d(radius, length, 0);
+      }
+      obstacle.solid.assign(mesh.triangle_count(), solid_key == 0 ? 0 : 1);
     }
     if (item["name"]) obstacle.name = in.text(item["name"], key + ".name");
     const Eigen::Isometry3d X_WO =
         item["pose"] ? read_pose(in, item["pose"], key + ".pose") : Eigen::Isometry3d::Identity();
-    obstacle.mesh_S = transformed(mesh, X_WO);  // S is W until moved
+    obstacle.X_SO = X_WO;  // S is W until moved
+    obstacle.mesh_S = transformed(mesh, X_WO);
     scene->obstacles.push_back(std::move(obstacle));
   }
+}
+
+// A notice naming the robot's links whose collision geometry has open components: those
+// are surfaces (an obstacle wholly inside one is not seen).
+void notice_open_links(Scene* scene) {
+  const RobotModel& robot = scene->robot;
+  std::string open;
+  int count = 0;
+  for (const Link& link : robot.links) {
+    if (link.collision.empty()) continue;
+    const std::vector<std::uint8_t> solid = link_solid_triangles(link);
+    if (std::find(solid.begin(), solid.end(), 0) == solid.end()) continue;
+    if (count < 8) open += std::string(count ? ", " : "") + link.name;
+    ++count;
+  }
+  if (count == 0) return;
+  if (count > 8) open += " and " + std::to_string(count - 8) + " more";
+  scene->notices.push_back(robot.source_file + ": the collision geometry of " +
+                           std::to_string(count) + " link" + (count == 1 ? "" : "s") + " (" + open +
+                           ") is not closed; its open parts are surfaces (an obstacle wholly "
+                           "inside one is not in collision), closed ones solid");
 }
 
 // Moves the scene frame to scene_frame_origin of the scene's world bounds: obstacles,
@@ -496,6 +558,7 @@ void move_scene_frame(Scene* scene) {
   scene->p_WS = p_WS;
   for (Obstacle& obstacle : scene->obstacles) {
     for (Eigen::Vector3d& p : obstacle.mesh_S.vertices) p -= p_WS;
+    obstacle.X_SO.translation() -= p_WS;
   }
   ConfigurationSpace& space = scene->space;
   const Eigen::Isometry3d X_SW(Eigen::Translation3d(-p_WS));
@@ -529,6 +592,10 @@ Eigen::Vector3d scene_frame_origin(const Eigen::AlignedBox3d& bounds_W) {
   if (!(c.norm() > d) || !(d > 0)) return Eigen::Vector3d::Zero();
   const double unit = std::pow(10.0, std::floor(std::log10(d)));
   return (c / unit).array().round() * unit;
+}
+
+bool Obstacle::is_solid_primitive() const {
+  return shape != ObstacleShape::kMesh && !solid.empty() && solid[0] != 0;
 }
 
 Eigen::Isometry3d Scene::X_WS() const { return Eigen::Isometry3d(Eigen::Translation3d(p_WS)); }
@@ -577,6 +644,7 @@ Scene load_scene(const std::string& path) {
       scene.narrowest_passage = in.text(root["narrowest_passage"], "narrowest_passage");
     }
     read_robot(in, in.required(root, "", "robot"), &scene);
+    notice_open_links(&scene);
     read_bounds(in, root["bounds"], &scene.space);
     read_obstacles(in, root["obstacles"], &scene);
     scene.dropped_obstacle_triangles = drop_unreachable_obstacle_triangles(&scene);
@@ -597,6 +665,7 @@ Scene load_scene(const std::string& path) {
       in.fail(root["planner"]["delta_fraction"], "planner.delta_fraction",
               "must lie in (0, 1e-5]: the tolerance band may not exceed 1e-5 of the scene's size");
     }
+    refine_primitive_obstacles(&scene);
     check_band_representable(scene, in.at(root["robot"], "robot"), in.at(root["bounds"], "bounds"));
     // The other numbers: each within its range (counts whole).
     struct Range {

@@ -95,4 +95,14 @@ TriangleMesh make_cylinder(double radius, double length, int segments) {
   return mesh;
 }
 
+double sphere_tessellation_excess(double radius, int rings, int segments) {
+  const double kPi = std::acos(-1.0);
+  return radius * (1 / (std::cos(kPi / segments) * std::cos(kPi / (2 * rings))) - 1);
+}
+
+double cylinder_tessellation_excess(double radius, int segments) {
+  const double kPi = std::acos(-1.0);
+  return radius * (1 / std::cos(kPi / segments) - 1);
+}
+
 }  // namespace gplanner

@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "gplanner/planner/scene/mesh_components.h"
 #include "gplanner/planner/scene/mesh_loader.h"
 
 namespace gplanner {
@@ -464,9 +465,12 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
           elements[i]->FirstChildElement("geometry")->FirstChildElement();
       const SourceLocation where{urdf_path, shape->GetLineNum(),
                                  "link '" + link->name + "' collision"};
-      out.collision.append(
-          collision_geometry(*collision.geometry, urdf_folder, packages, where, notices),
-          to_isometry(collision.origin));
+      const TriangleMesh element =
+          collision_geometry(*collision.geometry, urdf_folder, packages, where, notices);
+      // Solid where the element's own components are closed (docs/design.md, "Solids").
+      const std::vector<std::uint8_t> solid = closed_triangles(mesh_components(element));
+      out.collision.append(element, to_isometry(collision.origin));
+      out.solid.insert(out.solid.end(), solid.begin(), solid.end());
     }
     if (link->parent_joint) {
       const urdf::Joint& j = *link->parent_joint;

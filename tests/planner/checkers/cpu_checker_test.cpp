@@ -47,7 +47,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, CpuAgreesWithFcl,
                          });
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(CpuAgreesWithFcl);
 
-TEST(CpuChecker, DropsOnlyUnreachableObstacleTriangles) {
+TEST(CpuChecker, DropsOnlyUnreachableObstacleGeometry) {
   // A unit cube robot (reach sqrt(3)/2 from its centre) whose centre stays in
   // [-1, 1]^3: it can touch nothing beyond 1 + 0.866 on any axis.
   testing::ScratchFolder scratch;
@@ -61,20 +61,24 @@ obstacles:
   - {name: near, box: [0.2, 0.2, 0.2], pose: {xyz: [0, 0, 1.5]}}
   - {name: far, box: [1, 1, 1], pose: {xyz: [10, 0, 0]}}
   - {name: straddling, box: [1, 1, 1], pose: {xyz: [2, 0, 0]}}
+  - {name: straddling_surface, box: [1, 1, 1], pose: {xyz: [0, 2, 0]}, solid: false}
 bounds: {min: [-1, -1, -1], max: [1, 1, 1]}
 start: {base: {xyz: [-0.5, 0, -0.5], quat_wxyz: [1, 0, 0, 0]}}
 goal: {base: {xyz: [0.5, 0, -0.5], quat_wxyz: [1, 0, 0, 0]}}
 )");
   const Scene scene = load_scene(file);
   EXPECT_NEAR(robot_reach(scene.robot, scene.space), std::sqrt(3.0) / 2, 1e-9);
-  // The far box goes whole; of the straddling one (x in [1.5, 2.5]) only the two
-  // triangles of its face at x = 2.5 lie wholly beyond 1.866.
+  // The far box goes whole. The straddling one (x in [1.5, 2.5]) is a solid and stays
+  // whole; of the same box as a surface (y in [1.5, 2.5]) only the two triangles of its
+  // face at y = 2.5, wholly beyond 1.866, are dropped.
   EXPECT_EQ(scene.dropped_obstacle_triangles, 12u + 2u);
-  ASSERT_EQ(scene.obstacles.size(), 2u);
+  ASSERT_EQ(scene.obstacles.size(), 3u);
   EXPECT_EQ(scene.obstacles[0].name, "near");
   EXPECT_EQ(scene.obstacles[0].mesh_S.triangle_count(), 12u);
   EXPECT_EQ(scene.obstacles[1].name, "straddling");
-  EXPECT_EQ(scene.obstacles[1].mesh_S.triangle_count(), 10u);
+  EXPECT_EQ(scene.obstacles[1].mesh_S.triangle_count(), 12u);
+  EXPECT_EQ(scene.obstacles[2].name, "straddling_surface");
+  EXPECT_EQ(scene.obstacles[2].mesh_S.triangle_count(), 10u);
 }
 
 }  // namespace

@@ -1,13 +1,14 @@
 #pragma once
 // Everything the batch checker needs about a scene, as flat arrays: the kinematic tree
 // in topological order, one BVH per link and one for the environment, the link pairs
-// to check against each other, and the tolerance. Built once per scene by the planner
-// (from URDF, SRDF and meshes) and uploaded once.
+// to check against each other, the bodies' solid components, and the tolerance. Built
+// once per scene by the planner (from URDF, SRDF and meshes) and uploaded once.
 
 #include <cstdint>
 #include <vector>
 
 #include "gplanner/collision_gpu/bvh.h"
+#include "gplanner/collision_gpu/solids.h"
 
 namespace gplanner {
 
@@ -36,6 +37,10 @@ struct CollisionModel {
   std::vector<Bvh> link_bvhs;                             // per link (empty: no geometry)
   Bvh environment;                                        // in the world frame
   std::vector<std::int32_t> pair_a, pair_b;               // link pairs checked for self-collision
+  // The connected components of each link and of the environment, for the containment
+  // step (solids.h); a body without them is never inside anything nor holds anything.
+  std::vector<std::vector<BodyComponent>> link_components;  // per link, or empty
+  std::vector<BodyComponent> environment_components;
   // Leaf tests report triangles closer than this as colliding (half the tolerance band
   // delta, so that rounding stays inside the band); BV tests use a margin of twice it.
   float threshold = 0;

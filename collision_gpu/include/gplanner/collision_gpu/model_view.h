@@ -37,6 +37,12 @@ struct CollisionModelView {
   std::int32_t pair_count;
   const std::int32_t* pair_a;
   const std::int32_t* pair_b;
+  // Solids: whether any checked body pair has a solid component on either side (when
+  // not, the containment step does nothing), and each body's component trees.
+  std::int32_t containment;
+  const BodySolids* link_solids;
+  BodySolids environment_solids;
+  SolidsView solids;
 };
 
 // Host-side flat arrays of a model: what the CPU backend reads, and what the GPU
@@ -57,6 +63,10 @@ struct FlatCollisionModel {
   std::vector<BvhNode> nodes;
   std::vector<BvhTriangle> triangles;
   std::vector<std::int32_t> pair_a, pair_b;
+  FlatSolids solids;
+  std::vector<BodySolids> link_solids;
+  BodySolids environment_solids;
+  bool containment = false;
   // Deepest node pair any traversal can reach: a link's BVH depth plus the deeper of the
   // links' and the environment's.
   int traversal_depth = 0;

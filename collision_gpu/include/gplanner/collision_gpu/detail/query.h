@@ -1,10 +1,12 @@
 #pragma once
 // One collision query on host or device, in the pieces every traversal shares: forward
 // kinematics of a configuration, the checked bodies and their bounding-sphere broad
-// phase, the box and leaf tests, and the rule that splits a node pair. query_collides
-// puts them together with a private stack per query (the `basic` traversal, and the CPU
-// backend); the other traversals schedule the same pieces differently (src/traversals/).
+// phase, the box and leaf tests, the rule that splits a node pair, and the containment
+// step that runs when no surfaces meet (query_contained). query_collides puts them
+// together with a private stack per query (the `basic` traversal, and the CPU backend);
+// the other traversals schedule the same pieces differently (src/traversals/).
 
+#include "gplanner/collision_gpu/detail/containment.h"
 #include "gplanner/collision_gpu/geometry/obb.h"
 #include "gplanner/collision_gpu/geometry/triangle_distance.h"
 #include "gplanner/collision_gpu/model_view.h"
@@ -275,6 +277,34 @@ GP_HD bool body_may_touch(const CollisionModelView& m, int body, SphereCentre c_
   return spheres_may_touch(m, p, c_W(m.pair_a[p]), c_W(m.pair_b[p]));
 }
 
+// The containment step of one checked body (numbered as body_count's), once its two
+// bodies' surfaces are known to be apart: whether a component of either lies inside a
+// solid component of the other (containment.h). X_WL(l) gives link l's pose.
+template <typename LinkPose>
+GP_HD bool body_contained(const CollisionModelView& m, int body, LinkPose X_WL) {
+  if (body < m.link_count) {
+    return either_inside(m.solids, m.environment_solids, m.link_solids[body], X_WL(body), m.margin);
+  }
+  const int p = body - m.link_count;
+  return either_inside(m.solids, m.link_solids[m.pair_a[p]], m.link_solids[m.pair_b[p]],
+                       body_transform(m, body, X_WL), m.margin);
+}
+
+// The containment step of a query whose surface tests found no collision: whether a
+// link lies inside a solid obstacle or an obstacle inside a solid link, or a link of a
+// checked pair inside the other. Only bodies past the broad phase can (a body inside
+// another lies within its bounding volumes); nothing runs when the model has no solid
+// on either side of any checked body (m.containment). X_WL: the query's link poses.
+GP_HD bool query_contained(const CollisionModelView& m, const Xf* X_WL) {
+  if (!m.containment) return false;
+  const auto pose = [&](int l) { return X_WL[l]; };
+  const auto centre = [&](int l) { return sphere_center_W(m, l, X_WL[l]); };
+  for (int body = 0; body < body_count(m); ++body) {
+    if (body_may_touch(m, body, centre) && body_contained(m, body, pose)) return true;
+  }
+  return false;
+}
+
 // The whole query: true when configuration q (shape: [m.width]) collides with the
 // environment or with itself, or is no configuration (is_configuration). X_WL: scratch for
 // m.link_count poses.
@@ -289,7 +319,7 @@ GP_HD bool query_collides(const CollisionModelView& m, const float* q, Xf* X_WL,
     const BodyRanges r = body_ranges(m, body);
     if (bodies_collide(m, r.a, r.b, body_transform(m, body, pose), counts)) return true;
   }
-  return false;
+  return query_contained(m, X_WL);
 }
 
 }  // namespace gplanner::detail

@@ -1,9 +1,13 @@
 #pragma once
 // The baseline and ground truth: FCL (OBBRSS, double) on all CPU cores. Robot links
 // against the environment, and for articulated robots the checked link pairs against
-// each other, with an AABB test first as FCL's broad phase does. Calls from any number
-// of threads run in parallel: each chunk of a call poses FCL objects of its own, taken
-// from a pool that grows to the most chunks ever in flight, over shared, read-only BVHs.
+// each other, with an AABB test first as FCL's broad phase does. Solid box, sphere and
+// cylinder obstacles are FCL primitives (as MoveIt checks them); where FCL finds no
+// collision, the collision core's containment rule on the same components decides
+// whether a link lies inside a closed obstacle or link, or an obstacle inside a closed
+// link (docs/design.md, "Solids"). Calls from any number of threads run in parallel:
+// each chunk of a call poses FCL objects of its own, taken from a pool that grows to the
+// most chunks ever in flight, over shared, read-only BVHs.
 
 #include <memory>
 
@@ -23,8 +27,9 @@ class FclChecker : public CollisionChecker {
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override;
 
   // Smallest distance (metres) from the robot to the environment and between checked
-  // link pairs; 0 when the configuration collides. shape: configurations [n, width],
-  // distances [n].
+  // link pairs; 0 when the configuration collides. To a primitive with an allowance
+  // (Obstacle::allowance_m), its distance less the allowance. shape: configurations
+  // [n, width], distances [n].
   void distance(const float* configurations, std::size_t n, double* distances);
 
   int threads() const;

@@ -3,6 +3,7 @@
 // (every link after its parent), with the link pairs that self-collision ignores.
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <utility>
@@ -43,6 +44,10 @@ struct Link {
   std::string name;
   int parent_joint = -1;   // -1 for the root link
   TriangleMesh collision;  // in the link frame; empty when the link has no collision geometry
+  // Per triangle of collision: 1 where it belongs to a closed connected component of
+  // its collision element (a solid), 0 where it is a surface. Empty: decided from
+  // collision alone (closed_triangles).
+  std::vector<std::uint8_t> solid;
 };
 
 struct RobotModel {

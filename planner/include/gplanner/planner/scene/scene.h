@@ -2,6 +2,7 @@
 // A planning problem: the robot, how configurations map onto it, the static obstacles,
 // start and goal, and planner settings; all of it in the scene frame S (see p_WS).
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -13,10 +14,31 @@
 
 namespace gplanner {
 
+enum class ObstacleShape { kMesh, kBox, kSphere, kCylinder };
+
 struct Obstacle {
   std::string name;
-  TriangleMesh mesh_S;     // in the scene frame
+  TriangleMesh mesh_S;  // in the scene frame; a primitive's tessellation, which contains it
+  // Per triangle of mesh_S: 1 where it belongs to a solid (a closed connected component
+  // of an obstacle not marked `solid: false`), 0 where it is a surface; decided at load
+  // (docs/scenes.md, "Solids"). Empty: decided from mesh_S alone (closed_triangles).
+  std::vector<std::uint8_t> solid;
+  // Primitives: the exact shape and its pose, which the fcl backend checks as an FCL
+  // primitive when solid. dimensions: a box's side lengths, a sphere's (radius, 0, 0), a
+  // cylinder's (radius, length, 0) (axis z, centred).
+  ObstacleShape shape = ObstacleShape::kMesh;
+  Eigen::Vector3d dimensions = Eigen::Vector3d::Zero();
+  Eigen::Isometry3d X_SO = Eigen::Isometry3d::Identity();
+  // How far a solid sphere's or cylinder's tessellation lies outside the exact shape
+  // where that is more than the band allows (its triangle budget reached); 0 otherwise.
+  // `gplan check --compare` counts collisions reported within it of the shape as within
+  // the band (docs/design.md, "Solids").
+  double allowance_m = 0;
+  std::string file;        // a mesh obstacle's file
   SourceLocation defined;  // where the scene defines it
+
+  // Checked as an FCL primitive by the fcl backend: a solid box, sphere or cylinder.
+  bool is_solid_primitive() const;
 };
 
 struct Scene {
@@ -34,7 +56,8 @@ struct Scene {
   RobotModel robot;
   ConfigurationSpace space;
   std::vector<Obstacle> obstacles;
-  // Obstacle triangles dropped at load because the robot cannot reach them.
+  // Obstacle triangles dropped at load because the robot cannot reach them (open
+  // components triangle by triangle, closed ones whole).
   std::size_t dropped_obstacle_triangles = 0;
   std::vector<float> start;  // shape: [space.width()]
   std::vector<float> goal;   // shape: [space.width()]

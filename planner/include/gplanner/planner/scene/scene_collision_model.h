@@ -36,13 +36,36 @@ void check_band_representable(const Scene& scene, const SourceLocation& robot_at
 
 CollisionModel build_collision_model(const Scene& scene);
 
+// Per triangle, whether it belongs to a solid (Link::solid, Obstacle::solid; when those
+// are empty, whether its connected component is closed).
+std::vector<std::uint8_t> link_solid_triangles(const Link& link);
+std::vector<std::uint8_t> obstacle_solid_triangles(const Obstacle& obstacle);
+
+// The connected components of a mesh for the containment step (solids.h): those of the
+// triangles marked solid, each a solid, and those of the others, each a surface.
+std::vector<BodyComponent> mesh_body_components(const TriangleMesh& mesh,
+                                                const std::vector<std::uint8_t>& solid);
+
+// The environment's components, obstacle by obstacle. exact_primitives: each solid
+// primitive as one point, its centre, holding nothing (the fcl backend, which checks
+// primitives as FCL primitives, solid already); otherwise as its tessellation.
+std::vector<BodyComponent> environment_components(const Scene& scene, bool exact_primitives);
+
+// Tessellates every solid sphere and cylinder obstacle anew, so finely that its faces lie
+// within a fifth of the tolerance band of the exact shape (which the fcl backend checks),
+// within a budget of triangles (a sphere at most 256 segments, a cylinder 4096); where
+// the budget is not enough, sets its allowance_m and adds a notice.
+void refine_primitive_obstacles(Scene* scene);
+
 // A bound on how far any point of the robot can be from its root link's origin, over
 // all joint values within limits.
 double robot_reach(const RobotModel& robot, const ConfigurationSpace& space);
 
-// Removes obstacle triangles the robot cannot reach anywhere within the bounds (their
-// boxes miss the region the base can reach, grown by the robot's reach); returns how
-// many were removed. Obstacles left with no triangles are removed too.
+// Removes obstacle geometry the robot cannot reach anywhere within the bounds (the region
+// the base can reach, grown by the robot's reach): a surface's triangles whose boxes miss
+// that region, and solid components whose boxes miss it, whole (a solid is never opened,
+// and one containing the region is kept). Returns how many triangles were removed.
+// Obstacles left with no triangles are removed too.
 std::size_t drop_unreachable_obstacle_triangles(Scene* scene);
 
 }  // namespace gplanner

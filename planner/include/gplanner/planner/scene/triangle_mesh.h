@@ -32,4 +32,9 @@ TriangleMesh make_box(const Eigen::Vector3d& size);  // full side lengths
 TriangleMesh make_sphere(double radius, int rings = 12, int segments = 24);
 TriangleMesh make_cylinder(double radius, double length, int segments = 24);  // axis z
 
+// How far the faces of make_sphere and make_cylinder lie outside the exact shape at most
+// (at their vertices).
+double sphere_tessellation_excess(double radius, int rings, int segments);
+double cylinder_tessellation_excess(double radius, int segments);
+
 }  // namespace gplanner

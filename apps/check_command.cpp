@@ -240,8 +240,9 @@ int run_check(int argc, char** argv) {
     const int position_precision = scene.p_WS.isZero() ? 9 : 17;
     std::vector<double> values(width);
     // --pairs: per colliding row, the pair FCL finds colliding (a link, then an obstacle's
-    // key or a second link), "- -" for a free row; a row our backend reports colliding
-    // within the band, where FCL finds no contact, gets the closest pair and "(band)".
+    // key or a second link), "- -" for a free row; a colliding row where no surfaces
+    // meet (inside a closed body, or within the band) gets the closest pair and
+    // "(no-contact)".
     std::vector<std::string> pair_columns;
     if (args.flag("pairs")) {
       gplanner::CollisionReporter reporter(scene);
@@ -249,7 +250,7 @@ int run_check(int argc, char** argv) {
       for (std::size_t i = 0; i < n; ++i) {
         if (!verdicts[i]) continue;
         const gplanner::CollisionPair pair = reporter.first_pair(&q[i * width]);
-        pair_columns[i] = pair.a_key + " " + pair.b_key + (pair.found ? "" : " (band)");
+        pair_columns[i] = pair.a_key + " " + pair.b_key + (pair.found ? "" : " (no-contact)");
       }
     }
     gplanner::write_file_atomically(out, [&](std::ostream& stream) {

@@ -15,9 +15,7 @@ void check_start_and_goal(const Scene& scene, CollisionChecker* checker) {
   for (int k = 0; k < 2; ++k) {
     if (checker->in_collision(q[k]->data())) {
       const CollisionPair pair = CollisionReporter(scene).first_pair(q[k]->data());
-      const std::string which =
-          pair.found ? pair.describe() + " collide"
-                     : "within the tolerance band: FCL finds no contact, " + pair.describe();
+      const std::string which = pair.found ? pair.describe() + " collide" : pair.describe();
       throw InputError(*where[k], std::string(what[k]) + " configuration is in collision (" +
                                       checker->backend() + " backend): " + which +
                                       "; move it clear of the obstacles and of the robot's "

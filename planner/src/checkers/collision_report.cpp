@@ -26,6 +26,16 @@ std::shared_ptr<Bvh> fcl_mesh(const TriangleMesh& mesh) {
   return bvh;
 }
 
+// A solid box, sphere or cylinder obstacle as FCL's own primitive, as the fcl backend
+// checks it.
+std::shared_ptr<fcl::CollisionGeometryd> fcl_primitive(const Obstacle& obstacle) {
+  const Eigen::Vector3d& d = obstacle.dimensions;
+  if (obstacle.shape == ObstacleShape::kBox)
+    return std::make_shared<fcl::Boxd>(d.x(), d.y(), d.z());
+  if (obstacle.shape == ObstacleShape::kSphere) return std::make_shared<fcl::Sphered>(d.x());
+  return std::make_shared<fcl::Cylinderd>(d.x(), d.y());
+}
+
 }  // namespace
 
 std::string CollisionPair::describe() const {
@@ -33,8 +43,9 @@ std::string CollisionPair::describe() const {
   if (found) {
     text << a << " and " << b;
   } else {
-    text << "no pair collides; the closest are " << a << " and " << b << ", " << distance
-         << " m apart";
+    text << "no surfaces meet (a link lies inside a closed body, or the verdict rests on the "
+            "tolerance band); the closest are "
+         << a << " and " << b << ", " << distance << " m apart";
   }
   return text.str();
 }
@@ -53,7 +64,10 @@ struct CollisionReporter::Impl {
                           : std::make_unique<fcl::CollisionObjectd>(fcl_mesh(link.collision)));
     }
     for (const Obstacle& obstacle : scene.obstacles) {
-      obstacles.push_back(std::make_unique<fcl::CollisionObjectd>(fcl_mesh(obstacle.mesh_S)));
+      obstacles.push_back(
+          obstacle.is_solid_primitive()
+              ? std::make_unique<fcl::CollisionObjectd>(fcl_primitive(obstacle), obstacle.X_SO)
+              : std::make_unique<fcl::CollisionObjectd>(fcl_mesh(obstacle.mesh_S)));
       obstacles.back()->computeAABB();
     }
   }

@@ -1,7 +1,9 @@
 #pragma once
 // What collides at a configuration, said by FCL in double: the pair of bodies (a link
-// and an obstacle, or two checked links) that a verdict rests on, for messages and for
-// `gplan check --pairs`.
+// and an obstacle, or two checked links) whose surfaces meet (solid primitives as FCL's
+// primitives), for messages and for `gplan check --pairs`. Where none meet, a verdict of
+// collision rests on containment in a closed body or on the tolerance band, and the
+// closest pair is named.
 
 #include <memory>
 #include <string>

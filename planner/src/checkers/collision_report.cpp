@@ -6,37 +6,14 @@
 #include <sstream>
 #include <vector>
 
+#include "fcl_geometry.h"
 #include "gplanner/planner/scene/forward_kinematics.h"
 #include "gplanner/planner/scene/scene.h"
 
 namespace gplanner {
-namespace {
 
-using Bvh = fcl::BVHModel<fcl::OBBRSSd>;
-
-std::shared_ptr<Bvh> fcl_mesh(const TriangleMesh& mesh) {
-  auto bvh = std::make_shared<Bvh>();
-  std::vector<fcl::Triangle> triangles;
-  triangles.reserve(mesh.triangles.size());
-  for (const Eigen::Vector3i& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
-  bvh->beginModel(static_cast<int>(triangles.size()), static_cast<int>(mesh.vertices.size()));
-  bvh->addSubModel(mesh.vertices, triangles);
-  bvh->endModel();
-  bvh->computeLocalAABB();
-  return bvh;
-}
-
-// A solid box, sphere or cylinder obstacle as FCL's own primitive, as the fcl backend
-// checks it.
-std::shared_ptr<fcl::CollisionGeometryd> fcl_primitive(const Obstacle& obstacle) {
-  const Eigen::Vector3d& d = obstacle.dimensions;
-  if (obstacle.shape == ObstacleShape::kBox)
-    return std::make_shared<fcl::Boxd>(d.x(), d.y(), d.z());
-  if (obstacle.shape == ObstacleShape::kSphere) return std::make_shared<fcl::Sphered>(d.x());
-  return std::make_shared<fcl::Cylinderd>(d.x(), d.y());
-}
-
-}  // namespace
+using internal::fcl_mesh;
+using internal::fcl_primitive;
 
 std::string CollisionPair::describe() const {
   std::ostringstream text;

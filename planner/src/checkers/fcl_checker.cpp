@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "fcl_geometry.h"
 #include "gplanner/collision_gpu/detail/containment.h"
 #include "gplanner/common/parallel_for.h"
 #include "gplanner/common/scratch_pool.h"
@@ -15,35 +16,8 @@
 namespace gplanner {
 namespace {
 
-using FclBvh = fcl::BVHModel<fcl::OBBRSSd>;
-
-std::shared_ptr<FclBvh> build_bvh(const TriangleMesh& mesh) {
-  auto bvh = std::make_shared<FclBvh>();
-  std::vector<fcl::Triangle> triangles;
-  triangles.reserve(mesh.triangles.size());
-  for (const Eigen::Vector3i& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
-  bvh->beginModel(static_cast<int>(triangles.size()), static_cast<int>(mesh.vertices.size()));
-  bvh->addSubModel(mesh.vertices, triangles);
-  bvh->endModel();
-  bvh->computeLocalAABB();
-  return bvh;
-}
-
-// A solid box, sphere or cylinder obstacle as FCL's own primitive, as MoveIt checks them.
-std::shared_ptr<fcl::CollisionGeometryd> fcl_primitive(const Obstacle& obstacle) {
-  const Eigen::Vector3d& d = obstacle.dimensions;
-  switch (obstacle.shape) {
-    case ObstacleShape::kBox:
-      return std::make_shared<fcl::Boxd>(d.x(), d.y(), d.z());
-    case ObstacleShape::kSphere:
-      return std::make_shared<fcl::Sphered>(d.x());
-    case ObstacleShape::kCylinder:
-      return std::make_shared<fcl::Cylinderd>(d.x(), d.y());
-    case ObstacleShape::kMesh:
-      break;
-  }
-  return nullptr;
-}
+using internal::fcl_primitive;
+using internal::FclBvh;
 
 geometry::Transform<double> to_transform(const Eigen::Isometry3d& X) {
   geometry::Transform<double> out;
@@ -106,7 +80,7 @@ struct FclChecker::Impl {
     link_bvhs.resize(robot.links.size());
     for (std::size_t l = 0; l < robot.links.size(); ++l) {
       if (robot.links[l].collision.empty()) continue;
-      link_bvhs[l] = build_bvh(robot.links[l].collision);
+      link_bvhs[l] = internal::fcl_mesh(robot.links[l].collision);
       links_with_geometry.push_back(static_cast<int>(l));
     }
     TriangleMesh environment;
@@ -119,7 +93,7 @@ struct FclChecker::Impl {
         environment.append(obstacle.mesh_S);
       }
     }
-    if (!environment.empty()) environment_bvh = build_bvh(environment);
+    if (!environment.empty()) environment_bvh = internal::fcl_mesh(environment);
     checked_pairs = robot.checked_pairs();
 
     for (const Link& link : robot.links)

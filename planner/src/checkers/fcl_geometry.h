@@ -1,0 +1,22 @@
+#pragma once
+// Our geometry as FCL's (private to planner/src/checkers): the fcl backend and the
+// collision report build the same models from a scene.
+
+#include <fcl/fcl.h>
+
+#include <memory>
+
+#include "gplanner/planner/scene/scene.h"
+
+namespace gplanner::internal {
+
+using FclBvh = fcl::BVHModel<fcl::OBBRSSd>;
+
+// A triangle mesh as an FCL BVH (OBBRSS, double).
+std::shared_ptr<FclBvh> fcl_mesh(const TriangleMesh& mesh);
+
+// A solid box, sphere or cylinder obstacle as FCL's own primitive, as MoveIt checks them;
+// null for a mesh obstacle.
+std::shared_ptr<fcl::CollisionGeometryd> fcl_primitive(const Obstacle& obstacle);
+
+}  // namespace gplanner::internal

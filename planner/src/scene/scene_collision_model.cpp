@@ -61,9 +61,9 @@ ToleranceBand tolerance_band(const Scene& scene) {
   // too, so that a robot with no obstacle in reach still has a size).
   Eigen::AlignedBox3d box = scene.bounds_S();
   const Eigen::AlignedBox3d base = space.base_region();
-  const double reach = robot_reach(robot, space);
-  box.extend((base.min().array() - reach).matrix());
-  box.extend((base.max().array() + reach).matrix());
+  band.reach = robot_reach(robot, space);
+  box.extend((base.min().array() - band.reach).matrix());
+  box.extend((base.max().array() + band.reach).matrix());
   band.scene_size = box.diagonal().norm();
   // The robot: its geometry at the start (any frame: only the box's size counts).
   if (scene.start.size() == static_cast<std::size_t>(space.width())) {
@@ -117,7 +117,7 @@ void check_band_representable(const Scene& scene, const SourceLocation& robot_at
     }
   }
   const RobotModel& robot = scene.robot;
-  const double reach = robot_reach(robot, scene.space);
+  const double reach = band.reach;
   if (!(reach <= limit)) {
     throw InputError(robot_at, "the robot reaches " + metres(reach) + " from its root: " + why +
                                    "; check its mesh scales and its prismatic joints' limits");

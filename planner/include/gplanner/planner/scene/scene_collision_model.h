@@ -16,6 +16,7 @@ struct ToleranceBand {
   double scene_size = 0;  // diagonal of the box of the obstacles and of everywhere the
                           // robot can reach, in the scene frame
   double robot_size = 0;  // diagonal of the box of the robot's geometry at the start
+  double reach = 0;       // robot_reach: how far any robot point lies from its root
   bool capped = false;    // the robot's size set delta
 };
 constexpr double kRobotBandFraction = 1e-3;

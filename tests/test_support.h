@@ -36,4 +36,12 @@ struct CommandResult {
 // $GPLANNER_GPLAN is set, that command line instead (e.g. ".gpu/run .gpu/bin/gplan").
 CommandResult run_gplan(const std::string& arguments);
 
+// A closed cube of side 0.2 centred at the origin, faces counter-clockwise seen from
+// outside, as an OBJ file's text.
+inline constexpr const char* kCubeObj =
+    "v -0.1 -0.1 -0.1\nv 0.1 -0.1 -0.1\nv 0.1 0.1 -0.1\nv -0.1 0.1 -0.1\n"
+    "v -0.1 -0.1 0.1\nv 0.1 -0.1 0.1\nv 0.1 0.1 0.1\nv -0.1 0.1 0.1\n"
+    "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
+    "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+
 }  // namespace gplanner::testing

@@ -25,13 +25,6 @@ using gplanner::testing::CommandResult;
 using gplanner::testing::run_gplan;
 using gplanner::testing::ScratchFolder;
 
-// A cube of side 0.2 centred at the origin.
-const char* const kBoxObj =
-    "v -0.1 -0.1 -0.1\nv 0.1 -0.1 -0.1\nv 0.1 0.1 -0.1\nv -0.1 0.1 -0.1\n"
-    "v -0.1 -0.1 0.1\nv 0.1 -0.1 0.1\nv 0.1 0.1 0.1\nv -0.1 0.1 0.1\n"
-    "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
-    "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
-
 // The box robot flies around a 2 m cube in the middle of the bounds. FCL intersects
 // triangles, so the samples that collide are those where the robot crosses the cube's
 // surface (one wholly inside counts as free): about a fifth of them.
@@ -107,7 +100,7 @@ std::set<std::string> listing(const std::string& folder) {
 class GplanCheck : public ::testing::Test {
  protected:
   void SetUp() override {
-    folder_.write("box.obj", kBoxObj);
+    folder_.write("box.obj", testing::kCubeObj);
     scene_ = folder_.write("scene.yaml", kScene);
   }
 

@@ -21,13 +21,6 @@ namespace {
 
 using gplanner::testing::ScratchFolder;
 
-// A cube of side 0.2 centred at the origin.
-const char* const kBoxObj =
-    "v -0.1 -0.1 -0.1\nv 0.1 -0.1 -0.1\nv 0.1 0.1 -0.1\nv -0.1 0.1 -0.1\n"
-    "v -0.1 -0.1 0.1\nv 0.1 -0.1 0.1\nv 0.1 0.1 0.1\nv -0.1 0.1 0.1\n"
-    "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
-    "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
-
 // A fixed-base arm: a 1 x 1 x 0.2 slab, a 0.1 cube lifted by `lift` (prismatic, LIFT_MAX)
 // above z = 0.5, and a 0.2 cube turned by `turn` (revolute, +-TURN_MAX) about z below it.
 // The slab and the 0.2 cube are the one checked pair.
@@ -104,7 +97,7 @@ TEST(ToleranceBand, GpuFixedBaseWithNoObstacleIsSmallAndFinite) {
 
 TEST(ToleranceBand, ALargeFloorIsCappedByTheRobotsSize) {
   ScratchFolder scratch;
-  scratch.write("box.obj", kBoxObj);
+  scratch.write("box.obj", testing::kCubeObj);
   const Scene scene = load_scene(scratch.write(
       "scene.yaml", box_scene("obstacles:\n  - box: [200, 200, 0.1]\n    pose: {xyz: [0, 0, -1]}\n",
                               kSmallBounds)));
@@ -134,7 +127,7 @@ void expect_refused(const ScratchFolder& scratch, const std::string& scene_text,
 
 TEST(ToleranceBand, AnAbsurdObstacleScaleIsBadInput) {
   ScratchFolder scratch;
-  scratch.write("box.obj", kBoxObj);
+  scratch.write("box.obj", testing::kCubeObj);
   expect_refused(scratch,
                  box_scene("obstacles:\n  - mesh: box.obj\n    scale: [1e20, 1e20, 1]\n"
                            "    pose: {xyz: [0, 0, -1.5]}\n",
@@ -144,7 +137,7 @@ TEST(ToleranceBand, AnAbsurdObstacleScaleIsBadInput) {
 
 TEST(ToleranceBand, BoundsFarBeyondTheBandAreBadInput) {
   ScratchFolder scratch;
-  scratch.write("box.obj", kBoxObj);
+  scratch.write("box.obj", testing::kCubeObj);
   expect_refused(scratch,
                  box_scene("obstacles:\n  - box: [0.5, 0.5, 0.5]\n",
                            "bounds:\n  min: [-1e9, -1e9, -1e9]\n  max: [1e9, 1e9, 1e9]\n"),

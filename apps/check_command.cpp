@@ -13,6 +13,8 @@
 #include <stdexcept>
 
 #include "command_line.h"
+#include "gplanner/common/parallel_for.h"
+#include "gplanner/common/physical_memory.h"
 #include "gplanner/planner/checkers/checker_comparison.h"
 #include "gplanner/planner/checkers/checker_factory.h"
 #include "gplanner/planner/checkers/collision_report.h"
@@ -25,6 +27,9 @@ namespace gplan {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Most configurations one check may ask for (then bounded by memory).
+constexpr unsigned long long kMaxRows = 1000000000;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -100,17 +105,18 @@ int run_check(int argc, char** argv) {
                          {"json", "pairs"});
   if (args.positionals().size() != 1) throw UsageError("gplan check takes one scene file");
   const std::string scene_file = args.positionals()[0];
-  const std::size_t n = static_cast<std::size_t>(args.count("n", 10000));
-  const unsigned long long seed = static_cast<unsigned long long>(args.count("seed", 1));
+  // Counts within ranges that keep the run feasible; --n's memory is checked below,
+  // once the scene gives the row width.
+  const std::size_t n = args.count("n", 10000, 1, kMaxRows);
+  const unsigned long long seed = args.count("seed", 1, 0, ~0ULL);
   const std::string backend = args.text("backend", "fcl");
   const std::string compare = args.text("compare", "");
-  const std::size_t repeat = static_cast<std::size_t>(args.count("repeat", 1));
-  if (repeat == 0) throw UsageError("--repeat: give 1 or more runs");
+  const std::size_t repeat = args.count("repeat", 1, 1, 1000);
   gplanner::CheckerOptions options;
-  options.threads = static_cast<int>(args.count("threads", 0));
-  options.gpu.memory_cap_bytes = static_cast<std::size_t>(args.count("memory-cap-mb", 0)) << 20;
+  options.threads = static_cast<int>(args.count("threads", 0, 0, gplanner::kMaxThreads));
+  options.gpu.memory_cap_bytes = args.count("memory-cap-mb", 0, 0, 1ULL << 24) << 20;
   if (args.has("small-batch"))
-    options.gpu.warp_per_pair_up_to = static_cast<std::size_t>(args.count("small-batch", 0));
+    options.gpu.warp_per_pair_up_to = args.count("small-batch", 0, 0, kMaxRows);
   if (args.has("traversal") &&
       !gplanner::parse_traversal(args.text("traversal", ""), &options.gpu.traversal)) {
     throw UsageError("--traversal: '" + args.text("traversal", "") +
@@ -143,6 +149,15 @@ int run_check(int argc, char** argv) {
   const double load_s = seconds_since(load_start);
   const gplanner::ConfigurationSpace& space = scene.space;
   const std::size_t width = space.width();
+  // The batch, its verdicts and one run's verdicts, before allocating them.
+  const double batch_bytes = static_cast<double>(n) * (width * sizeof(float) + 2);
+  if (!gplanner::fits_in_memory(batch_bytes)) {
+    throw UsageError("--n " + std::to_string(n) + ": " + std::to_string(width) +
+                     "-float rows need about " + gplanner::memory_text(batch_bytes) +
+                     ", more than half of this machine's " +
+                     gplanner::memory_text(gplanner::physical_memory_bytes()) +
+                     " of memory; give a smaller --n");
+  }
   const auto pairs = scene.robot.checked_pairs();
   const double delta = gplanner::tolerance_delta(scene);
 

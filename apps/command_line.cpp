@@ -1,5 +1,6 @@
 #include "command_line.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -44,14 +45,21 @@ std::string CommandLine::text(const std::string& name, const std::string& fallba
   return it == values_.end() ? fallback : it->second;
 }
 
-long long CommandLine::count(const std::string& name, long long fallback) const {
+unsigned long long CommandLine::count(const std::string& name, unsigned long long fallback,
+                                      unsigned long long low, unsigned long long high) const {
   const auto it = values_.find(name);
   if (it == values_.end()) return fallback;
+  const std::string& text = it->second;
   errno = 0;
-  char* end = nullptr;
-  const long long value = std::strtoll(it->second.c_str(), &end, 10);
-  if (it->second.empty() || *end != '\0' || errno != 0 || value < 0) {
-    throw UsageError("--" + name + " expects a non-negative integer, not '" + it->second + "'");
+  unsigned long long value = 0;
+  const bool digits =
+      !text.empty() && text.size() <= 20 &&
+      std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (digits) value = std::strtoull(text.c_str(), nullptr, 10);
+  if (!digits || errno != 0 || value < low || value > high) {
+    const std::string shown = text.size() > 40 ? text.substr(0, 40) + "..." : text;
+    throw UsageError("--" + name + " expects a whole number from " + std::to_string(low) +
+                     " to " + std::to_string(high) + ", not '" + shown + "'");
   }
   return value;
 }

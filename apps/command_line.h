@@ -25,8 +25,10 @@ class CommandLine {
   bool flag(const std::string& name) const { return flags_.count(name) > 0; }
   bool has(const std::string& name) const { return values_.count(name) > 0; }
   std::string text(const std::string& name, const std::string& fallback) const;
-  // Non-negative integers, rejected with a UsageError naming the option otherwise.
-  long long count(const std::string& name, long long fallback) const;
+  // A whole number in [low, high] (decimal digits only: no sign, no wrap past the
+  // range); otherwise a UsageError naming the option, the value and the range.
+  unsigned long long count(const std::string& name, unsigned long long fallback,
+                           unsigned long long low, unsigned long long high) const;
   // Positive finite numbers, rejected with a UsageError naming the option otherwise.
   double positive_number(const std::string& name, double fallback) const;
 

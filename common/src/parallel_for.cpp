@@ -27,7 +27,7 @@ int reserve_helpers(int wanted, int limit) {
 }  // namespace
 
 int resolve_thread_count(int requested) {
-  if (requested > 0) return requested;
+  if (requested > 0) return std::min(requested, kMaxThreads);
   // Asked once: it is a query to the system, and small calls ask in every loop.
   static const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   return hardware;
@@ -70,7 +70,10 @@ void parallel_for(std::size_t n, int threads,
   try {
     for (int t = 1; t <= helpers; ++t) pool.emplace_back(worker, t);
   } catch (const std::system_error&) {
-    // Fewer threads than asked for: those started and the caller do the whole loop.
+    // Fewer threads than asked for (the system's limit on threads or memory): those
+    // started and the caller do the whole loop, and the others go back to the budget.
+    g_helpers -= helpers - static_cast<int>(pool.size());
+    release.count = static_cast<int>(pool.size());
   }
   worker(0);
   for (std::thread& thread : pool) thread.join();

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -83,7 +84,11 @@ void for_each_row(std::size_t rows, int k, int threads, const RowFunction& row) 
     }
   };
   std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < count; ++t) pool.emplace_back(work);
+  try {
+    for (std::size_t t = 1; t < count; ++t) pool.emplace_back(work);
+  } catch (const std::system_error&) {
+    // A thread the system fails to start: those started and this one do all rows.
+  }
   work();
   for (std::thread& thread : pool) thread.join();
 }

@@ -7,7 +7,12 @@
 
 namespace gplanner {
 
-// Number of threads to use for `requested` (0: all hardware threads).
+// Most threads a caller may ask for (gplan's --threads): more would only exhaust the
+// system's threads, not add cores.
+inline constexpr int kMaxThreads = 1024;
+
+// Number of threads to use for `requested` (0: all hardware threads; at most
+// kMaxThreads).
 int resolve_thread_count(int requested);
 
 // Calls body(begin, end, thread) for disjoint chunks covering [0, n); `thread` is in
@@ -16,7 +21,9 @@ int resolve_thread_count(int requested);
 //
 // Calls may come from many threads at once, and from inside a body: the helper threads
 // of all calls running together number at most max(hardware threads, threads) - 1, and
-// a call that finds them all busy runs its loop on the calling thread alone. Many
+// a call that finds them all busy runs its loop on the calling thread alone. A helper
+// that the system fails to start is not an error: the threads that did start (at least
+// the calling one) run the whole loop. Many
 // callers (an OMPL planner's threads in a checker's loop) thus share the cores instead
 // of starting threads by the hundred, and no call waits for another's threads.
 void parallel_for(std::size_t n, int threads,

@@ -2,16 +2,20 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
 
 #include "command_line.h"
+#include "gplanner/common/parallel_for.h"
+#include "gplanner/common/physical_memory.h"
 #include "gplanner/planner/checkers/checker_factory.h"
 #include "gplanner/planner/output/path_file.h"
 #include "gplanner/planner/output/path_picture.h"
 #include "gplanner/planner/planning/neighbor_finder.h"
+#include "gplanner/planner/planning/roadmap.h"
 #include "gplanner/planner/planning/roadmap_planner.h"
 #include "gplanner/planner/planning/scene_metric.h"
 #include "gplanner/planner/scene/scene.h"
@@ -43,7 +47,7 @@ int run_plan(int argc, char** argv) {
     throw UsageError("--planner: '" + args.text("planner", "") + "' is not one of lazyprm, prm");
   const std::string backend = args.text("backend", "gpu");
   gplanner::CheckerOptions checker_options;
-  checker_options.threads = static_cast<int>(args.count("threads", 0));
+  checker_options.threads = static_cast<int>(args.count("threads", 0, 0, gplanner::kMaxThreads));
   if (args.has("traversal") &&
       !gplanner::parse_traversal(args.text("traversal", ""), &checker_options.gpu.traversal)) {
     throw UsageError("--traversal: '" + args.text("traversal", "") +
@@ -61,14 +65,23 @@ int run_plan(int argc, char** argv) {
   if (!load.empty() && !std::filesystem::is_regular_file(load))
     throw UsageError("--load-roadmap " + load + ": no such file");
 
+  const auto setup_start = std::chrono::steady_clock::now();
   const gplanner::Scene scene = gplanner::load_scene(scene_file);
   for (const std::string& notice : scene.notices) std::cerr << "notice: " << notice << "\n";
   gplanner::PlanOptions options = gplanner::plan_options(scene);
-  options.seed = static_cast<unsigned long long>(args.count("seed", options.seed));
+  options.seed = args.count("seed", options.seed, 0, ~0ULL);
   options.time_limit_s = args.positive_number("time-limit", options.time_limit_s);
-  if (args.has("milestones")) {
-    options.milestones = static_cast<std::size_t>(args.count("milestones", 0));
-    if (options.milestones == 0) throw UsageError("--milestones: give 1 or more");
+  options.milestones = args.count("milestones", options.milestones, 1, gplanner::kMaxMilestones);
+  // The first round's roadmap, before it is begun (later rounds stop at memory).
+  const double roadmap_bytes =
+      gplanner::roadmap_bytes(options.milestones, scene.space.width(), options.neighbors);
+  if (!gplanner::fits_in_memory(roadmap_bytes)) {
+    throw UsageError((args.has("milestones") ? "--milestones"
+                                             : scene_file + ": planner.roadmap.milestones") +
+                     (" " + std::to_string(options.milestones)) + ": the roadmap needs about " +
+                     gplanner::memory_text(roadmap_bytes) + ", more than half of this machine's " +
+                     gplanner::memory_text(gplanner::physical_memory_bytes()) +
+                     " of memory; give fewer milestones");
   }
 
   std::unique_ptr<gplanner::CollisionChecker> checker;
@@ -104,6 +117,9 @@ int run_plan(int argc, char** argv) {
 
   gplanner::RoadmapPlanner planner(scene, checker.get(), neighbors.get(), strategy, options);
   if (!load.empty()) planner.set_roadmap(gplanner::load_roadmap(scene, load));
+  // Setup (scene, checker, roadmap file) apart from planning, which --time-limit bounds.
+  const double setup_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
   const gplanner::PlanResult result = planner.solve(scene.start.data(), scene.goal.data());
   if (terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
   if (!save.empty()) gplanner::save_roadmap(planner.roadmap(), scene, save);
@@ -152,10 +168,17 @@ int run_plan(int argc, char** argv) {
               << ",\"samples_checked\":" << result.samples_checked
               << ",\"searches\":" << result.searches << ",\"edge_batches\":" << result.edge_batches
               << ",\"rounds\":" << result.rounds << ",\"seconds\":" << t.total
+              << ",\"setup_seconds\":" << setup_s
               << ",\"times\":{\"sampling\":" << t.sampling << ",\"state_checks\":" << t.state_checks
               << ",\"knn\":" << t.knn << ",\"search\":" << t.search
               << ",\"edge_checks\":" << t.edge_checks << ",\"shortcutting\":" << t.shortcutting
               << "}}\n";
+  }
+  if (!result.solved && result.stop_reason == "memory limit") {
+    std::cerr << "gplan: no path found in " << result.milestones << " milestones, and a "
+              << "larger roadmap would need more than half of this machine's memory; try "
+              << "another --seed or the scene's planner.sampler settings\n";
+    return 4;
   }
   if (!result.solved) {
     std::cerr << "gplan: no path found within " << options.time_limit_s << " s ("

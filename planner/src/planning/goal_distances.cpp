@@ -17,10 +17,13 @@ using MinQueue = std::priority_queue<Entry, std::vector<Entry>, std::greater<Ent
 // Dijkstra from the queued vertices outwards over the usable edges: each vertex is
 // settled at its least cost, and its edges lower their other ends' costs. (After
 // remove_edges seeds it, only the affected vertices can be lowered: the others keep the
-// costs of ways that still exist.)
-void settle(const Roadmap& roadmap, bool valid_edges_only, MinQueue* open,
-            std::vector<double>* cost, std::vector<std::uint32_t>* via) {
-  while (!open->empty()) {
+// costs of ways that still exist.) Polls `should_stop` every kStopPoll vertices; false
+// when it said to stop, the costs then unfinished.
+bool settle(const Roadmap& roadmap, bool valid_edges_only, const std::function<bool()>& should_stop,
+            MinQueue* open, std::vector<double>* cost, std::vector<std::uint32_t>* via) {
+  constexpr std::size_t kStopPoll = 4096;
+  for (std::size_t popped = 1; !open->empty(); ++popped) {
+    if (popped % kStopPoll == 0 && should_stop && should_stop()) return false;
     const auto [c, v] = open->top();
     open->pop();
     if (c > (*cost)[v]) continue;
@@ -35,6 +38,7 @@ void settle(const Roadmap& roadmap, bool valid_edges_only, MinQueue* open,
       }
     }
   }
+  return true;
 }
 
 }  // namespace
@@ -47,7 +51,7 @@ void GoalDistances::compute(const Roadmap& roadmap, std::uint32_t goal, bool val
   MinQueue open;
   cost_[goal] = 0;
   open.emplace(0, goal);
-  settle(roadmap, valid_edges_only_, &open, &cost_, &via_);
+  stopped_ = !settle(roadmap, valid_edges_only_, should_stop_, &open, &cost_, &via_);
 }
 
 std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
@@ -103,7 +107,7 @@ std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
     }
     if (via_[v] != kNone) open.emplace(cost_[v], v);
   }
-  settle(roadmap, valid_edges_only_, &open, &cost_, &via_);
+  stopped_ = !settle(roadmap, valid_edges_only_, should_stop_, &open, &cost_, &via_);
   for (const std::uint32_t v : found) affected_[v] = 0;
   return found.size();
 }

@@ -42,7 +42,9 @@ struct SearchScratch {
 template <class Heuristic>
 GraphPath a_star(const Roadmap& roadmap, std::uint32_t start, std::uint32_t goal,
                  bool valid_edges_only, const Heuristic& heuristic,
-                 std::size_t max_expanded = ~std::size_t(0)) {
+                 std::size_t max_expanded = ~std::size_t(0),
+                 const std::function<bool()>& should_stop = {}) {
+  constexpr std::size_t kStopPoll = 4096;
   thread_local SearchScratch scratch;
   scratch.begin(roadmap.vertex_count());
   using Entry = std::pair<double, std::uint32_t>;  // (cost + heuristic, vertex)
@@ -60,7 +62,8 @@ GraphPath a_star(const Roadmap& roadmap, std::uint32_t start, std::uint32_t goal
     scratch.closed[v] = scratch.stamp;
     ++path.expanded;
     if (v == goal) break;
-    if (path.expanded >= max_expanded) {
+    if (path.expanded >= max_expanded ||
+        (path.expanded % kStopPoll == 0 && should_stop && should_stop())) {
       path.gave_up = true;
       return path;
     }
@@ -107,10 +110,10 @@ GraphPath shortest_path(const Roadmap& roadmap, const ConfigurationMetric& metri
 
 GraphPath shortest_path(const Roadmap& roadmap, const std::vector<double>& to_goal,
                         std::uint32_t start, std::uint32_t goal, bool valid_edges_only,
-                        std::size_t max_expanded) {
+                        std::size_t max_expanded, const std::function<bool()>& should_stop) {
   return a_star(
       roadmap, start, goal, valid_edges_only, [&](std::uint32_t v) { return to_goal[v]; },
-      max_expanded);
+      max_expanded, should_stop);
 }
 
 }  // namespace gplanner

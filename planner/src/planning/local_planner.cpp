@@ -1,6 +1,7 @@
 #include "gplanner/planner/planning/local_planner.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -39,7 +40,8 @@ LocalPlanner::LocalPlanner(const Scene& scene, CollisionChecker* checker,
       checker_(checker),
       options_(options),
       metric_(make_metric(scene.space, scene.planner)),
-      bound_(scene.robot, scene.space) {
+      bound_(scene.robot, scene.space),
+      batch_size_(options.batch_seconds, 4096, 256, options.max_batch_samples) {
   if (!(options.resolution_fraction > 0) && !(options.max_displacement > 0))
     throw std::invalid_argument("local planner: the resolution must be positive");
 }
@@ -142,10 +144,11 @@ bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t
       next[e] += take;
     }
     if (picks.empty()) break;
-    // Batches of at most max_batch_samples, so that memory stays bounded.
-    for (std::size_t first = 0; first < picks.size(); first += options_.max_batch_samples) {
+    // Batches of at most max_batch_samples, so that memory stays bounded, and sized to
+    // take about batch_seconds, so that the stop is seen often.
+    for (std::size_t first = 0, n = 0; first < picks.size(); first += n) {
       if (should_stop_ && should_stop_()) return false;
-      const std::size_t n = std::min(options_.max_batch_samples, picks.size() - first);
+      n = std::min(batch_size_.next(), picks.size() - first);
       samples.resize(n * width);
       parallel_for(
           n, resolve_thread_count(0),
@@ -158,7 +161,10 @@ bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t
           },
           1024);
       verdicts.assign(n, 0);
+      const auto started = std::chrono::steady_clock::now();
       checker_->check(samples.data(), n, verdicts.data());
+      batch_size_.record(
+          n, std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
       add_stats(0, n, 1);
       for (std::size_t i = 0; i < n; ++i)
         if (verdicts[i]) invalid[picks[first + i].first] = 1;

@@ -68,4 +68,19 @@ double MotionBound::displacement(const float* a, const float* b) const {
   return motion;
 }
 
+double MotionBound::longest_displacement() const {
+  constexpr double kPi = 3.14159265358979323846;
+  double motion = 0;
+  if (space_.base == BaseType::kFloating) {
+    motion += (space_.base_max - space_.base_min).norm() + kPi * root_reach_;
+  } else if (space_.base == BaseType::kPlanar) {
+    motion += (space_.base_max - space_.base_min).head<2>().norm() + kPi * root_reach_;
+  }
+  for (std::size_t i = 0; i < joint_reach_.size(); ++i) {
+    const double range = space_.continuous[i] ? kPi : space_.upper[i] - space_.lower[i];
+    motion += range * joint_reach_[i];
+  }
+  return motion;
+}
+
 }  // namespace gplanner

@@ -28,17 +28,17 @@ class GnatNeighborFinder : public NeighborFinder {
   explicit GnatNeighborFinder(const ConfigurationMetric& metric) : metric_(metric) { reset(); }
   std::string device() const override { return "cpu"; }
 
-  void nearest_of_new(const float* points, std::size_t n, std::size_t first_new, int k,
-                      std::vector<int>* indices) override {
+  void nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end, int k,
+                  std::vector<int>* indices) override {
     points_ = points;
-    if (first_new < added_) reset();
+    if (first == 0 || n < added_) reset();
     for (std::size_t i = added_; i < n; ++i) tree_->add(static_cast<std::uint32_t>(i));
     added_ = n;
-    indices->assign((n - first_new) * k, -1);
+    indices->assign((end - first) * k, -1);
     std::vector<std::uint32_t> found;
-    for (std::size_t i = first_new; i < n; ++i) {
+    for (std::size_t i = first; i < end; ++i) {
       tree_->nearestK(static_cast<std::uint32_t>(i), k + 1, found);
-      write_others(found.data(), found.size(), i, k, &(*indices)[(i - first_new) * k]);
+      write_others(found.data(), found.size(), i, k, &(*indices)[(i - first) * k]);
     }
   }
 
@@ -65,16 +65,16 @@ class BruteForceNeighborFinder : public NeighborFinder {
  public:
   explicit BruteForceNeighborFinder(const ConfigurationMetric& metric) : metric_(metric) {}
   std::string device() const override { return "cpu"; }
-  void nearest_of_new(const float* points, std::size_t n, std::size_t first_new, int k,
-                      std::vector<int>* indices) override {
-    const std::size_t m = n - first_new;
+  void nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end, int k,
+                  std::vector<int>* indices) override {
+    const std::size_t m = end - first;
     indices->assign(m * k, -1);
     if (m == 0) return;
-    // k + 1: each new point finds itself among the n.
+    // k + 1: each point finds itself among the n.
     const NeighborTable table =
-        nearest_neighbors_cpu(metric_, points, n, points + first_new * metric_.width(), m, k + 1);
+        nearest_neighbors_cpu(metric_, points, n, points + first * metric_.width(), m, k + 1);
     for (std::size_t q = 0; q < m; ++q) {
-      write_others(&table.indices[q * (k + 1)], k + 1, first_new + q, k, &(*indices)[q * k]);
+      write_others(&table.indices[q * (k + 1)], k + 1, first + q, k, &(*indices)[q * k]);
     }
   }
 
@@ -102,11 +102,12 @@ class GpuNeighborFinder : public NeighborFinder {
  public:
   explicit GpuNeighborFinder(const ConfigurationMetric& metric) : metric_(metric) {}
   std::string device() const override { return "gpu"; }
-  void nearest_of_new(const float* points, std::size_t n, std::size_t first_new, int k,
-                      std::vector<int>* indices) override {
+  void nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end, int k,
+                  std::vector<int>* indices) override {
     const NeighborTable table = gpu_.all_nearest(metric_, points, n, k);
-    indices->assign(table.indices.begin() + first_new * k, table.indices.end());
+    indices->assign(table.indices.begin() + first * k, table.indices.begin() + end * k);
   }
+  bool searches_all_points() const override { return true; }
 
  private:
   ConfigurationMetric metric_;

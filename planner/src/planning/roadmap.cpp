@@ -1,5 +1,6 @@
 #include "gplanner/planner/planning/roadmap.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -110,6 +111,16 @@ long long Roadmap::find_edge(std::uint32_t a, std::uint32_t b) const {
     if (edge.a == w || edge.b == w) return e;
   }
   return -1;
+}
+
+double roadmap_bytes(std::size_t milestones, int width, int neighbors) {
+  // Per vertex: its row, its adjacency list (add_edge's first room of 32 entries, or
+  // about 2k), and the searches' costs, parents and marks (GoalDistances and A*); per
+  // edge (up to k a vertex): the edge, and its length and neighbour index while made.
+  const double per_vertex = width * sizeof(float) + sizeof(std::vector<std::uint32_t>) +
+                            std::max(32.0, 2.0 * neighbors) * sizeof(std::uint32_t) + 32.0;
+  const double per_edge = sizeof(RoadmapEdge) + sizeof(float) + sizeof(int);
+  return static_cast<double>(milestones) * (per_vertex + neighbors * per_edge);
 }
 
 std::uint64_t scene_fingerprint(const Scene& scene) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gplanner/common/parallel_for.h"
+#include "gplanner/common/physical_memory.h"
 #include "gplanner/planner/planning/goal_distances.h"
 #include "gplanner/planner/planning/graph_search.h"
 #include "gplanner/planner/planning/path_shortcutting.h"
@@ -28,6 +29,18 @@ class StageTimer {
   double* sink_;
   Clock::time_point start_;
 };
+
+// How long one slice of a long stage should take: 1 % of the time limit, within
+// [20 ms, 250 ms], so that a stop or the time limit is seen within the larger of 5 %
+// and 100 ms of it, and a fast backend still gets large batches.
+double slice_seconds(const PlanOptions& options) {
+  return std::clamp(0.01 * options.time_limit_s, 0.02, 0.25);
+}
+
+LocalPlannerOptions sliced(LocalPlannerOptions options, const PlanOptions& plan) {
+  options.batch_seconds = slice_seconds(plan);
+  return options;
+}
 
 LocalPlannerOptions refined(LocalPlannerOptions options, int refinement) {
   options.resolution_fraction /= refinement;
@@ -60,10 +73,12 @@ RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
       neighbors_(neighbors),
       strategy_(strategy),
       options_(options),
-      local_(scene, checker, options.local),
+      local_(scene, checker, sliced(options.local, options)),
       sampler_(scene.space, local_.metric(), options.sampler),
       roadmap_(scene.space.width()),
-      rng_(options.seed) {}
+      rng_(options.seed),
+      sampling_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 22),
+      knn_batch_(slice_seconds(options), 4096, 64, std::size_t(1) << 18) {}
 
 double RoadmapPlanner::elapsed() const { return seconds_since(started_); }
 
@@ -89,42 +104,61 @@ void RoadmapPlanner::report(const char* stage, const PlanResult& result) const {
 
 std::size_t RoadmapPlanner::add_milestones(std::size_t count, PlanResult* result) {
   // Batches sized by the milestones found per attempt so far, until `count` are in (or
-  // the time is up): a first batch of `count` attempts, then usually one more.
+  // the time is up), and by the measured throughput so that one takes about a slice.
+  // Milestones found beyond `count` wait for the next round, so that the roadmap is the
+  // same whatever the batches were.
   const int width = scene_.space.width();
-  constexpr std::size_t kMaxBatch = std::size_t(1) << 22;
   std::size_t added = 0;
-  while (added < count) {
+  auto take_surplus = [&] {
+    const std::size_t n = std::min(count - added, surplus_.size() / width);
+    for (std::size_t i = 0; i < n; ++i, ++added) roadmap_.add_vertex(&surplus_[i * width]);
+    surplus_.erase(surplus_.begin(), surplus_.begin() + n * width);
+  };
+  take_surplus();
+  while (added < count && !out_of_time(result)) {
     const double yield =
         attempts_ ? std::max(0.01, static_cast<double>(attempts_found_) / attempts_) : 1.0;
     const std::size_t batch = std::min<std::size_t>(
-        kMaxBatch, static_cast<std::size_t>(std::ceil((count - added) / yield * 1.1)));
+        sampling_batch_.next(), static_cast<std::size_t>(std::ceil((count - added) / yield * 1.1)));
+    const auto started = Clock::now();
     std::vector<float> found;
     result->states_checked += sampler_.sample(&rng_, batch, checker_, &found, &result->times);
-    const std::size_t n = found.size() / width;
+    sampling_batch_.record(batch, seconds_since(started));
     attempts_ += batch;
-    attempts_found_ += n;
-    for (std::size_t i = 0; i < n && added < count; ++i, ++added)
-      roadmap_.add_vertex(&found[i * width]);
-    if (out_of_time(result)) break;
+    attempts_found_ += found.size() / width;
+    surplus_.insert(surplus_.end(), found.begin(), found.end());
+    take_surplus();
   }
   return added;
 }
 
-std::size_t RoadmapPlanner::connect(PlanResult* result) {
-  // The new milestones joined to their k nearest in chunks of kChunk, each chunk's among
-  // the milestones before it and itself (later ones join back to it), so that a stop or
-  // the time limit is seen between chunks: one k-NN call over millions of new milestones
-  // took tens of seconds past the limit. Rounds of up to kChunk new milestones are one call.
-  constexpr std::size_t kChunk = std::size_t(1) << 18;
+bool RoadmapPlanner::connect(PlanResult* result) {
+  // The new milestones joined to their k nearest among all milestones, in chunks sized
+  // by the measured k-NN time to take about a slice each, so that a stop or the time
+  // limit is seen between chunks (one call over millions of new milestones took tens of
+  // seconds past the limit). A finder that searches all points in every call (the GPU's)
+  // gets them in one call, made only where the last call's time, scaled as the square of
+  // the points, says it ends within the time limit.
   StageTimer timer(&result->times.knn);
   const std::size_t n = roadmap_.vertex_count();
   const int k = options_.neighbors;
   const ConfigurationMetric& metric = local_.metric();
+  const bool whole = neighbors_->searches_all_points();
   std::vector<int> nearest;
-  std::size_t added = 0;
+  if (connected_ < n) roadmap_.reserve_edges(roadmap_.edge_count() + (n - connected_) * k);
   for (std::size_t first = std::min(connected_, n); first < n;) {
-    const std::size_t end = std::min(n, first + kChunk);
-    neighbors_->nearest_of_new(roadmap_.vertices().data(), end, first, k, &nearest);
+    if (out_of_time(result)) return false;
+    const double scale = knn_last_points_ ? static_cast<double>(n) / knn_last_points_ : 0;
+    if (whole && elapsed() + knn_last_seconds_ * scale * scale > options_.time_limit_s) {
+      result->stop_reason = "time limit";
+      return false;
+    }
+    const std::size_t end = whole ? n : std::min(n, first + knn_batch_.next());
+    const auto started = Clock::now();
+    neighbors_->nearest_of(roadmap_.vertices().data(), n, first, end, k, &nearest);
+    knn_last_seconds_ = seconds_since(started);
+    knn_last_points_ = n;
+    knn_batch_.record(end - first, knn_last_seconds_);
     // The edges' lengths on all cores, then the edges themselves in order.
     std::vector<float> lengths(nearest.size());
     parallel_for(
@@ -138,21 +172,17 @@ std::size_t RoadmapPlanner::connect(PlanResult* result) {
           }
         },
         512);
-    roadmap_.reserve_edges(roadmap_.edge_count() + (end - first) * k);
     for (std::size_t v = first; v < end; ++v) {
       for (int j = 0; j < k; ++j) {
         const int w = nearest[(v - first) * k + j];
         if (w < 0) break;
-        if (roadmap_.add_edge(static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(w),
-                              lengths[(v - first) * k + j]) >= 0) {
-          ++added;
-        }
+        roadmap_.add_edge(static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(w),
+                          lengths[(v - first) * k + j]);
       }
     }
     connected_ = first = end;
-    if (first < n && out_of_time(result)) break;
   }
-  return added;
+  return true;
 }
 
 std::vector<std::uint32_t> RoadmapPlanner::unknown_edges(const GraphPath& path) const {
@@ -200,8 +230,9 @@ void RoadmapPlanner::add_next_paths(const GoalDistances& to_goal, std::uint32_t 
   GoalDistances aside = to_goal;
   bool exact = aside.remove_edges(roadmap_, *batch, max_repair) <= max_repair;
   for (int p = 1; p < options_.lazy_batch_paths; ++p) {
-    const GraphPath next =
-        shortest_path(roadmap_, aside.cost(), s, g, /*valid_edges_only=*/false, max_expanded);
+    if (aside.stopped()) break;
+    const GraphPath next = shortest_path(roadmap_, aside.cost(), s, g, /*valid_edges_only=*/false,
+                                         max_expanded, stop_);
     ++result->searches;
     if (next.vertices.empty()) break;
     const std::vector<std::uint32_t> unknown = unknown_edges(next);
@@ -234,12 +265,18 @@ bool RoadmapPlanner::check_edge_motions(LocalPlanner* planner,
 void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result) {
   if (edges.empty()) return;
   StageTimer timer(&result->times.edge_checks);
+  // In parts of kPart edges (PRM hands over millions), each part's verdicts kept: memory
+  // stays bounded, and a stop loses only the part under way, whose edges stay unknown.
+  constexpr std::size_t kPart = std::size_t(1) << 18;
   std::vector<std::uint8_t> invalid;
-  // Stopped part way: the edges stay unknown.
-  if (!check_edge_motions(&local_, edges, &invalid)) return;
-  for (std::size_t i = 0; i < edges.size(); ++i)
-    roadmap_.edge(edges[i]).state = invalid[i] ? EdgeState::kInvalid : EdgeState::kValid;
-  result->edges_checked += edges.size();
+  for (std::size_t first = 0; first < edges.size(); first += kPart) {
+    const std::vector<std::uint32_t> part(edges.begin() + first,
+                                          edges.begin() + std::min(edges.size(), first + kPart));
+    if (!check_edge_motions(&local_, part, &invalid)) return;
+    for (std::size_t i = 0; i < part.size(); ++i)
+      roadmap_.edge(part[i]).state = invalid[i] ? EdgeState::kInvalid : EdgeState::kValid;
+    result->edges_checked += part.size();
+  }
 }
 
 PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
@@ -247,13 +284,16 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   PlanResult result;
   local_.reset_stats();
   const int width = scene_.space.width();
-  local_.set_stop([this] {
+  stop_ = [this] {
     return (options_.should_stop && options_.should_stop()) || elapsed() >= options_.time_limit_s;
-  });
+  };
+  local_.set_stop(stop_);
   sampler_.set_endpoints(start, goal);
   const std::uint32_t s = roadmap_.add_vertex(start);
   const std::uint32_t g = roadmap_.add_vertex(goal);
-  LocalPlanner fine(scene_, checker_, refined(options_.local, options_.final_check_refinement));
+  LocalPlanner fine(scene_, checker_,
+                    refined(sliced(options_.local, options_), options_.final_check_refinement));
+  fine.set_stop(stop_);
   const bool lazy = strategy_ == RoadmapStrategy::kLazyPrm;
   GraphPath found;
   for (std::size_t round = 0; found.vertices.empty(); ++round) {
@@ -264,9 +304,14 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     const std::size_t have = roadmap_.vertex_count() - 2;
     const std::size_t count = round == 0 ? (have >= options_.milestones ? 0 : options_.milestones)
                                          : std::max(options_.milestones, have);
+    if (count > 0 && !fits_in_memory(roadmap_bytes(roadmap_.vertex_count() + count, width,
+                                                   options_.neighbors))) {
+      result.stop_reason = "memory limit";
+      break;
+    }
     if (count > 0) add_milestones(count, &result);
     report("milestones", result);
-    connect(&result);
+    if (!connect(&result)) break;
     report("neighbours", result);
     if (!lazy) {
       std::vector<std::uint32_t> unknown;
@@ -280,9 +325,14 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     // exact as edges turn invalid (GoalDistances), so that each search goes straight
     // along the next shortest path.
     GoalDistances to_goal;
+    to_goal.set_stop(stop_);
     {
       StageTimer timer(&result.times.search);
       to_goal.compute(roadmap_, g, /*valid_edges_only=*/!lazy);
+    }
+    if (to_goal.stopped()) {
+      out_of_time(&result);  // says why
+      break;
     }
     // Edges found invalid: removed from to_goal's ways.
     auto remove_invalid = [&](const std::vector<std::uint32_t>& checked) {
@@ -292,11 +342,12 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
         if (roadmap_.edge(e).state == EdgeState::kInvalid) removed.push_back(e);
       to_goal.remove_edges(roadmap_, removed);
     };
-    while (!out_of_time(&result)) {
+    while (!out_of_time(&result) && !to_goal.stopped()) {
       GraphPath path;
       {
         StageTimer timer(&result.times.search);
-        path = shortest_path(roadmap_, to_goal.cost(), s, g, /*valid_edges_only=*/!lazy);
+        path = shortest_path(roadmap_, to_goal.cost(), s, g, /*valid_edges_only=*/!lazy,
+                             ~std::size_t(0), stop_);
         ++result.searches;
       }
       if (path.vertices.empty()) break;
@@ -352,8 +403,11 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     result.length = result.length_before_shortcut;
     if (options_.shortcut_rounds > 0) {
       StageTimer timer(&result.times.shortcutting);
+      // Its own generator: the sampler's position depends on how many attempts the
+      // time-sized batches made.
+      std::mt19937_64 shortcut_rng(options_.seed ^ 0x5bd1e995u);
       result.length = shortcut_path(scene_.space, &local_, &fine, options_.shortcut_rounds,
-                                    options_.shortcut_candidates, &rng_, &result.path);
+                                    options_.shortcut_candidates, &shortcut_rng, &result.path);
       report("shortcut", result);
     }
   }

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "gplanner/planner/planning/local_planner.h"
 #include "gplanner/planner/scene/mesh_components.h"
 #include "gplanner/planner/scene/mesh_loader.h"
 #include "gplanner/planner/scene/scene.h"
@@ -675,11 +676,15 @@ Scene load_scene(const std::string& path) {
       const char* what;
     };
     const Range ranges[] = {
+        {"seed", 0, 9007199254740992.0, false, true,
+         "must be a whole number from 0 to 9007199254740992 (2^53)"},
         {"time_limit_s", 0, 1e9, true, false, "must be a positive number of seconds"},
         {"distance_weights.position", 0, 1e9, false, false, "must be 0 or more"},
         {"distance_weights.rotation", 0, 1e9, false, false, "must be 0 or more"},
         {"distance_weights.joint", 0, 1e9, false, false, "must be 0 or more"},
-        {"edge_resolution", 0, 1, true, false, "must lie in (0, 1]"},
+        {"edge_resolution", 1.0 / kMaxEdgeSegments, 1, false, false,
+         "must lie in [1e-5, 1]: an edge across the space takes up to 1 / edge_resolution "
+         "samples, 1e5 at most"},
         {"max_displacement", 0, 1e9, false, false, "must be 0 (off) or a distance in metres"},
         {"roadmap.milestones", 1, 1e8, false, true, "must be a whole number from 1 to 1e8"},
         {"roadmap.neighbors", 1, 64, false, true, "must be a whole number from 1 to 64"},
@@ -703,6 +708,18 @@ Scene load_scene(const std::string& path) {
                                     : root["planner"][key.substr(0, dot)][key.substr(dot + 1)];
         in.fail(node, "planner." + key, r.what);
       }
+    }
+    // max_displacement: samples per edge by the robot's reach, as many as the longest
+    // motion needs at most.
+    const double max_displacement = scene.planner.number("max_displacement");
+    const double longest = MotionBound(scene.robot, scene.space).longest_displacement();
+    if (max_displacement > 0 && longest / max_displacement > kMaxEdgeSegments) {
+      std::ostringstream what;
+      what << "asks for up to " << std::setprecision(3) << longest / max_displacement
+           << " samples per edge (the longest motion moves a robot point " << longest
+           << " m), more than " << kMaxEdgeSegments << "; give at least "
+           << longest / kMaxEdgeSegments << " m";
+      in.fail(root["planner"]["max_displacement"], "planner.max_displacement", what.str());
     }
   } catch (const YAML::Exception& e) {
     // A value of the wrong shape where yaml-cpp itself converts (a map key, say).

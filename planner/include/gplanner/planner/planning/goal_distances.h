@@ -9,6 +9,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <utility>
 #include <vector>
 
 #include "gplanner/planner/planning/roadmap.h"
@@ -34,8 +36,15 @@ class GoalDistances {
   // length(v, w) + cost[w] over every usable edge.
   const std::vector<double>& cost() const { return cost_; }
 
+  // Polled every few thousand vertices by compute and remove_edges; true stops them,
+  // and stopped() then says the costs are unfinished (not a lower bound: not to be used).
+  void set_stop(std::function<bool()> should_stop) { should_stop_ = std::move(should_stop); }
+  bool stopped() const { return stopped_; }
+
  private:
   bool valid_edges_only_ = false;
+  std::function<bool()> should_stop_;
+  bool stopped_ = false;
   std::vector<double> cost_;
   std::vector<std::uint32_t> via_;  // each vertex's first edge on its way to the goal
   // remove_edges' scratch: which vertices it searches again, and their list.

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "gplanner/knn_gpu/configuration_metric.h"
@@ -29,9 +30,11 @@ GraphPath shortest_path(const Roadmap& roadmap, const ConfigurationMetric& metri
 // to_goal[v]: a lower bound on v's cost to the goal over the usable edges, consistent
 // (to_goal[v] <= length(v, w) + to_goal[w] for every usable edge), infinity where v
 // cannot reach the goal; shape [roadmap.vertex_count()].
-// Gives up (an empty path, gave_up set) once it has expanded max_expanded vertices.
+// Gives up (an empty path, gave_up set) once it has expanded max_expanded vertices, or
+// when `should_stop` (polled every few thousand expansions) says to.
 GraphPath shortest_path(const Roadmap& roadmap, const std::vector<double>& to_goal,
                         std::uint32_t start, std::uint32_t goal, bool valid_edges_only,
-                        std::size_t max_expanded = ~std::size_t(0));
+                        std::size_t max_expanded = ~std::size_t(0),
+                        const std::function<bool()>& should_stop = {});
 
 }  // namespace gplanner

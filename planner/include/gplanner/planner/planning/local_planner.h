@@ -27,10 +27,16 @@
 #include "gplanner/knn_gpu/configuration_metric.h"
 #include "gplanner/planner/checkers/collision_checker.h"
 #include "gplanner/planner/planning/motion_bound.h"
+#include "gplanner/planner/planning/timed_batch_size.h"
 
 namespace gplanner {
 
 struct Scene;
+
+// Most segments the longest motion of a space may be cut into (scenes asking for more,
+// through edge_resolution or max_displacement, are refused at load): the final check,
+// finer by planner.final_check_refinement, then takes up to 1e6 samples an edge.
+inline constexpr double kMaxEdgeSegments = 1e5;
 
 struct LocalPlannerOptions {
   // Longest segment of each component as a fraction of that component's extent.
@@ -43,6 +49,9 @@ struct LocalPlannerOptions {
   // No batch holds more samples than this (memory; and stop conditions are polled
   // between batches).
   std::size_t max_batch_samples = 1 << 18;
+  // > 0: batches are also sized from the checker's measured throughput so that one
+  // takes about this long (a planner's stop is then seen that often); 0: not by time.
+  double batch_seconds = 0;
 };
 
 struct MotionCheckStats {
@@ -103,6 +112,7 @@ class LocalPlanner {
   mutable std::mutex stats_mutex_;
   MotionCheckStats stats_;  // under stats_mutex_
   std::function<bool()> should_stop_;
+  TimedBatchSize batch_size_;  // samples per checker call
 };
 
 // The interior sample indices 1 .. segments - 1, coarse to fine: the midpoint first,

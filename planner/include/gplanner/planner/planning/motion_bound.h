@@ -19,6 +19,11 @@ class MotionBound {
   // Metres; a and b: shape [space.width()].
   double displacement(const float* a, const float* b) const;
 
+  // The bound for the longest motion the space allows (the base across its bounds'
+  // diagonal and through a half turn, every joint across its range, a continuous one
+  // through a half turn): no edge moves a robot point farther. Metres.
+  double longest_displacement() const;
+
   double root_reach() const { return root_reach_; }
   // Per planned joint: metres of point motion per unit of joint motion.
   const std::vector<double>& joint_reach() const { return joint_reach_; }

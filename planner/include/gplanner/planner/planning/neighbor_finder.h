@@ -18,12 +18,21 @@ class NeighborFinder {
   virtual ~NeighborFinder() = default;
   // "gpu" or "cpu": where it runs.
   virtual std::string device() const = 0;
-  // points: shape [n, metric.width()], of which [0, first_new) were given to earlier
-  // calls in the same order (a call with fewer starts afresh). indices: shape
-  // [n - first_new, k]: for each new point its k nearest among all n, nearest first,
-  // itself excluded, -1 where fewer than k others exist.
-  virtual void nearest_of_new(const float* points, std::size_t n, std::size_t first_new, int k,
-                              std::vector<int>* indices) = 0;
+  // points: shape [n, metric.width()], of which those given to earlier calls are in
+  // the same order (a call with first 0, or fewer points than before, starts afresh).
+  // indices: shape [end - first, k]: for each point in [first, end) its k nearest among
+  // all n, nearest first, itself excluded, -1 where fewer than k others exist. The same
+  // whatever ranges the new points are asked in.
+  virtual void nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end,
+                          int k, std::vector<int>* indices) = 0;
+  // The points [first_new, n) in one call.
+  void nearest_of_new(const float* points, std::size_t n, std::size_t first_new, int k,
+                      std::vector<int>* indices) {
+    nearest_of(points, n, first_new, n, k, indices);
+  }
+  // Whether a call costs a search of all n points whatever its range (the GPU's):
+  // callers then ask for all new points at once rather than in parts.
+  virtual bool searches_all_points() const { return false; }
 };
 
 // The GPU finder for backend "gpu" when a GPU can be used, else the CPU one (`notice`,

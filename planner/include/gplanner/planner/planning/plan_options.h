@@ -20,6 +20,10 @@ struct PlanProgress {
   double elapsed_s;
 };
 
+// Most free milestones a first round may ask for (gplan --milestones, the scene's
+// planner.roadmap.milestones); memory bounds it further (roadmap_bytes).
+inline constexpr std::size_t kMaxMilestones = 100000000;
+
 struct PlanOptions {
   unsigned long long seed = 1;
   double time_limit_s = 30;
@@ -36,7 +40,8 @@ struct PlanOptions {
   LocalPlannerOptions local;
   SamplerOptions sampler;  // how milestones are drawn
   std::function<void(const PlanProgress&)> progress;
-  // Polled between stages: true stops planning (OMPL's termination conditions).
+  // Polled often (between slices of every stage, each kept short): true stops planning
+  // (OMPL's termination conditions, gplan's SIGINT), as the time limit does.
   std::function<bool()> should_stop;
 };
 

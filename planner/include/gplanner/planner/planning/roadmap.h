@@ -58,6 +58,11 @@ class Roadmap {
   std::vector<std::vector<std::uint32_t>> adjacency_;
 };
 
+// About how many bytes a planner's roadmap of `milestones` vertices of `width` floats,
+// each joined to its `neighbors` nearest, takes with the search's per-vertex state:
+// estimated before growing it, so that a roadmap that would not fit is not begun.
+double roadmap_bytes(std::size_t milestones, int width, int neighbors);
+
 // 64-bit fingerprint of what decides a roadmap's validity in `scene`: the robot's
 // geometry and kinematics, the obstacles, the configuration space (with the scene
 // frame, where moved), the metric weights, the tolerance band and the edge resolution

@@ -11,6 +11,7 @@
 // Seeded and deterministic for a given seed (with a deterministic checker).
 
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <random>
 #include <string>
@@ -25,6 +26,7 @@
 #include "gplanner/planner/planning/plan_options.h"
 #include "gplanner/planner/planning/plan_result.h"
 #include "gplanner/planner/planning/roadmap.h"
+#include "gplanner/planner/planning/timed_batch_size.h"
 
 namespace gplanner {
 
@@ -62,7 +64,9 @@ class RoadmapPlanner {
 
  private:
   std::size_t add_milestones(std::size_t count, PlanResult* result);
-  std::size_t connect(PlanResult* result);
+  // Joins the milestones not yet joined to their nearest; false when it stopped first
+  // (stop_reason set).
+  bool connect(PlanResult* result);
   void check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result);
   // The motions along `edges` checked by `planner` (invalid: one entry per edge); false
   // when its stop condition ended the check part way.
@@ -91,11 +95,23 @@ class RoadmapPlanner {
   std::mt19937_64 rng_;
   // Sampling attempts made and milestones found so far: their ratio sizes batches.
   std::size_t attempts_ = 0, attempts_found_ = 0;
+  // Milestones found beyond a round's count, the next round's first (shape [*, width]).
+  std::vector<float> surplus_;
   // Milestones [0, connected_) have been joined to their neighbours.
   std::size_t connected_ = 0;
   // Edges that passed the fine re-check (in the roadmap as it is now).
   std::unordered_set<std::uint32_t> certified_;
   std::chrono::steady_clock::time_point started_;
+  // Every long stage runs in slices of about slice_seconds(options) (milestone batches,
+  // k-NN chunks, checker calls; the searches poll it), with this stop between them: a
+  // stop, or the time limit passed.
+  std::function<bool()> stop_;
+  TimedBatchSize sampling_batch_;  // sampling attempts per checker call
+  TimedBatchSize knn_batch_;       // new milestones per k-NN call
+  // The last k-NN call, for a finder that searches all points each call: its points
+  // and time, to tell whether the next one would end within the time limit.
+  std::size_t knn_last_points_ = 0;
+  double knn_last_seconds_ = 0;
 };
 
 }  // namespace gplanner

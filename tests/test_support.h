@@ -2,6 +2,8 @@
 // Shared by the tests: where the project and the real robot data are, scratch folders,
 // and running the gplan program.
 
+#include <cstddef>
+#include <functional>
 #include <string>
 
 namespace gplanner::testing {
@@ -35,6 +37,12 @@ struct CommandResult {
 // Runs the gplan program built beside the tests with `arguments` (shell syntax); where
 // $GPLANNER_GPLAN is set, that command line instead (e.g. ".gpu/run .gpu/bin/gplan").
 CommandResult run_gplan(const std::string& arguments);
+
+// Runs `body` in a child process whose address space is held to what it maps now plus
+// `spare` bytes, so that threads fail to start there (each needs a stack of megabytes):
+// returns 0 when body returned true, 1 when false, 2 when it threw, and 128 + the signal
+// when the child died (std::terminate's abort: 134).
+int run_with_address_space_to_spare(std::size_t spare, const std::function<bool()>& body);
 
 // A closed cube of side 0.2 centred at the origin, faces counter-clockwise seen from
 // outside, as an OBJ file's text.

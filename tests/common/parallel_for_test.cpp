@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "gplanner/common/scratch_pool.h"
+#include "test_support.h"
 
 namespace gplanner {
 namespace {
@@ -103,6 +104,36 @@ TEST(ScratchPool, EachLeaseHasItsOwnObjectAndObjectsAreReused) {
   }
   for (std::thread& thread : threads) thread.join();
   EXPECT_LE(made, 4 + 2);
+}
+
+// Helper threads the system fails to start (here: no address space left for their
+// stacks) are not fatal: the threads that did start, at least the calling one, run
+// every item, and the budget gets the others back.
+TEST(ParallelFor, ThreadsThatFailToStartLeaveTheWholeLoopToThoseThatDid) {
+  const std::size_t n = 5000;
+  std::vector<std::atomic<int>> seen(n);
+  const int code = testing::run_with_address_space_to_spare(std::size_t(24) << 20, [&] {
+    parallel_for(
+        n, kMaxThreads,
+        [&](std::size_t begin, std::size_t end, int) {
+          for (std::size_t i = begin; i < end; ++i) seen[i]++;
+        },
+        1);
+    for (const std::atomic<int>& s : seen)
+      if (s != 1) return false;
+    // Once more: a budget that kept the helpers that never started would be spent.
+    std::atomic<std::size_t> second{0};
+    parallel_for(n, 4, [&](std::size_t begin, std::size_t end, int) { second += end - begin; }, 1);
+    return second == n;
+  });
+  EXPECT_EQ(code, 0) << "0: every item once; 1: items missed or repeated; 2: threw; 134: "
+                        "terminated";
+}
+
+TEST(ParallelFor, ThreadCountsAreCappedAtTheStatedMaximum) {
+  EXPECT_EQ(resolve_thread_count(1 << 30), kMaxThreads);
+  EXPECT_EQ(resolve_thread_count(3), 3);
+  EXPECT_GE(resolve_thread_count(0), 1);
 }
 
 }  // namespace

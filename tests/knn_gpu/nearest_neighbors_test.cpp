@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "knn_gpu/knn_test_support.h"
+#include "test_support.h"
 
 namespace gplanner {
 namespace {
@@ -26,6 +27,24 @@ void expect_matches_naive(const ConfigurationMetric& metric, std::size_t n, int 
   const std::vector<float> points = random_configurations(metric, n, seed);
   const NeighborTable cpu = all_nearest_neighbors_cpu(metric, points.data(), n, k, radius);
   EXPECT_TRUE(same_tables(naive_neighbors(metric, points.data(), n, nullptr, 0, k, radius), cpu));
+}
+
+// Threads the system fails to start (no address space left for their stacks) are not
+// fatal: the search runs on those that did (before: std::terminate, the started
+// threads' handles destroyed while joinable).
+TEST(KnnCpu, ThreadsThatFailToStartLeaveTheRowsToThoseThatDid) {
+  const ConfigurationMetric metric = floating_metric(3);
+  const std::size_t n = 400;
+  const std::vector<float> points = random_configurations(metric, n, 7);
+  const NeighborTable expected = naive_neighbors(metric, points.data(), n, nullptr, 0, 5,
+                                                 kUnboundedRadius);
+  const int code = gplanner::testing::run_with_address_space_to_spare(
+      std::size_t(24) << 20, [&] {
+        const NeighborTable cpu =
+            all_nearest_neighbors_cpu(metric, points.data(), n, 5, kUnboundedRadius, 1024);
+        return static_cast<bool>(same_tables(expected, cpu));
+      });
+  EXPECT_EQ(code, 0) << "0: the right neighbours; 1: wrong ones; 2: threw; 134: terminated";
 }
 
 TEST(KnnCpu, MatchesNaiveFloatingBaseWithJoints) {

@@ -41,7 +41,7 @@ LocalPlanner::LocalPlanner(const Scene& scene, CollisionChecker* checker,
       options_(options),
       metric_(make_metric(scene.space, scene.planner)),
       bound_(scene.robot, scene.space),
-      batch_size_(options.batch_seconds, 4096, 256, options.max_batch_samples) {
+      batch_size_(options.batch_seconds, 1024, 256, options.max_batch_samples) {
   if (!(options.resolution_fraction > 0) && !(options.max_displacement > 0))
     throw std::invalid_argument("local planner: the resolution must be positive");
 }

@@ -77,8 +77,8 @@ RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
       sampler_(scene.space, local_.metric(), options.sampler),
       roadmap_(scene.space.width()),
       rng_(options.seed),
-      sampling_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 22),
-      knn_batch_(slice_seconds(options), 4096, 64, std::size_t(1) << 18) {}
+      sampling_batch_(slice_seconds(options), 256, 64, std::size_t(1) << 22),
+      knn_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 18) {}
 
 double RoadmapPlanner::elapsed() const { return seconds_since(started_); }
 

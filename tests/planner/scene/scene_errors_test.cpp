@@ -359,7 +359,16 @@ TEST_F(SceneErrors, UnknownPlannerSetting) {
 TEST_F(SceneErrors, PlannerSettingOutOfRange) {
   const std::vector<std::vector<std::string>> cases = {
       {"time_limit_s: 0\n", "time_limit_s: 0", "planner.time_limit_s", "positive"},
-      {"edge_resolution: 1.5\n", "edge_resolution: 1.5", "planner.edge_resolution", "(0, 1]"},
+      {"edge_resolution: 1.5\n", "edge_resolution: 1.5", "planner.edge_resolution", "[1e-5, 1]"},
+      // Integers given as doubles were cast: -1 wrapped, 1e30 overflowed, 1.9 became 1.
+      {"seed: -1\n", "seed: -1", "planner.seed", "whole number from 0 to 9007199254740992"},
+      {"seed: 1e30\n", "seed: 1e30", "planner.seed", "whole number from 0 to 9007199254740992"},
+      {"seed: 1.9\n", "seed: 1.9", "planner.seed", "whole number from 0 to 9007199254740992"},
+      {"shortcut: {candidates: 1e30}\n", "candidates: 1e30", "planner.shortcut.candidates",
+       "whole number from 1 to 1e6"},
+      // Billions of samples an edge: a hang, not an answer.
+      {"edge_resolution: 1e-9\n", "edge_resolution: 1e-9", "planner.edge_resolution",
+       "1e5 at most"},
       {"max_displacement: -0.1\n", "max_displacement: -0.1", "planner.max_displacement", "0"},
       {"roadmap: {neighbors: 100}\n", "neighbors: 100", "planner.roadmap.neighbors", "1 to 64"},
       {"roadmap: {lazy_batch_paths: 0}\n", "lazy_batch_paths: 0",
@@ -374,6 +383,17 @@ TEST_F(SceneErrors, PlannerSettingOutOfRange) {
     s.tail = "planner:\n  " + c[0];
     EXPECT_TRUE(SceneFailsAt(s.text(), c[1], c[2], {c[3]})) << c[0];
   }
+}
+
+// max_displacement in range but so small against the robot's reach that an edge would
+// take billions of samples: refused with the estimate and the least value accepted.
+TEST_F(SceneErrors, MaxDisplacementAskingForTooManySamplesPerEdge) {
+  MeshScene s;
+  s.tail = "planner:\n  max_displacement: 1.0e-8\n";
+  EXPECT_TRUE(SceneFailsAt(s.text(), "max_displacement: 1.0e-8", "planner.max_displacement",
+                           {"samples per edge", "more than 100000", "give at least"}));
+  s.tail = "planner:\n  max_displacement: 0.01\n";
+  EXPECT_NO_THROW(load_scene(write("fine.yaml", s.text())));
 }
 
 TEST_F(SceneErrors, MissingRequiredKey) {

@@ -31,10 +31,11 @@ class StageTimer {
 };
 
 // How long one slice of a long stage should take: 1 % of the time limit, within
-// [20 ms, 250 ms], so that a stop or the time limit is seen within the larger of 5 %
-// and 100 ms of it, and a fast backend still gets large batches.
+// [20 ms, 40 ms], so that the time limit is kept within the larger of 5 % and 100 ms
+// and a stop (should_stop: SIGINT, OMPL's conditions) is honoured within 100 ms, while
+// a fast backend still gets batches of millions.
 double slice_seconds(const PlanOptions& options) {
-  return std::clamp(0.01 * options.time_limit_s, 0.02, 0.25);
+  return std::clamp(0.01 * options.time_limit_s, 0.02, 0.04);
 }
 
 LocalPlannerOptions sliced(LocalPlannerOptions options, const PlanOptions& plan) {
@@ -77,7 +78,7 @@ RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
       sampler_(scene.space, local_.metric(), options.sampler),
       roadmap_(scene.space.width()),
       rng_(options.seed),
-      sampling_batch_(slice_seconds(options), 256, 64, std::size_t(1) << 22),
+      sampling_batch_(slice_seconds(options), 128, 64, std::size_t(1) << 22),
       knn_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 18) {}
 
 double RoadmapPlanner::elapsed() const { return seconds_since(started_); }

@@ -717,8 +717,8 @@ Scene load_scene(const std::string& path) {
       std::ostringstream what;
       what << "asks for up to " << std::setprecision(3) << longest / max_displacement
            << " samples per edge (the longest motion moves a robot point " << longest
-           << " m), more than " << kMaxEdgeSegments << "; give at least "
-           << longest / kMaxEdgeSegments << " m";
+           << " m), more than " << static_cast<long long>(kMaxEdgeSegments)
+           << "; give at least " << longest / kMaxEdgeSegments << " m";
       in.fail(root["planner"]["max_displacement"], "planner.max_displacement", what.str());
     }
   } catch (const YAML::Exception& e) {

@@ -30,7 +30,8 @@ double json_number(const std::string& output, const std::string& key) {
   return std::stod(match[1]);
 }
 
-void expect_ends_within_the_limit(const std::string& scene_file, const std::string& backend) {
+void expect_ends_within_the_limit(const std::string& file, const std::string& backend) {
+  const std::string scene_file = testing::project_root() + "/scenes/" + file;
   constexpr double kLimit = 1.0;
   const double bound = kLimit + std::max(0.05 * kLimit, 0.1);
   for (const std::string extra : {"", " --milestones 10000000"}) {

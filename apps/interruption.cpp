@@ -32,8 +32,13 @@ void catch_interruptions() {
   // The first signal asks the run to stop; the handler is then reset, so that a second
   // one ends a run that does not stop in time.
   action.sa_flags = SA_RESETHAND;
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
+  for (const int signal_number : {SIGINT, SIGTERM}) {
+    // A signal ignored on entry (a background job of a script, for SIGINT) stays ignored.
+    struct sigaction previous {};
+    if (sigaction(signal_number, nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN)
+      continue;
+    sigaction(signal_number, &action, nullptr);
+  }
 }
 
 bool interrupted() { return received_signal != 0; }

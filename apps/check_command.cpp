@@ -13,7 +13,6 @@
 #include <stdexcept>
 
 #include "command_line.h"
-#include "interruption.h"
 #include "gplanner/planner/checkers/checker_comparison.h"
 #include "gplanner/planner/checkers/checker_factory.h"
 #include "gplanner/planner/checkers/collision_report.h"
@@ -23,6 +22,7 @@
 #include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/scene/scene.h"
 #include "gplanner/planner/scene/scene_collision_model.h"
+#include "interruption.h"
 
 namespace gplan {
 namespace {
@@ -44,8 +44,8 @@ void check_with_progress(gplanner::CollisionChecker* checker, const std::vector<
   // Slices of at most kSlice configurations on the CPU: a fraction of a second each.
   constexpr std::size_t kSlice = 4096;
   const std::size_t slices = show ? 20 : 1;
-  const std::size_t slice = std::max<std::size_t>(
-      1, gpu ? n : std::min(kSlice, (n + slices - 1) / slices));
+  const std::size_t slice =
+      std::max<std::size_t>(1, gpu ? n : std::min(kSlice, (n + slices - 1) / slices));
   for (std::size_t begin = 0; begin < n && !interrupted(); begin += slice) {
     const std::size_t count = std::min(slice, n - begin);
     checker->check(q.data() + begin * width, count, verdicts->data() + begin);
@@ -150,7 +150,8 @@ int run_check(int argc, char** argv) {
   const gplanner::Scene scene = gplanner::load_scene(scene_file);
   for (const std::string& notice : scene.notices)
     std::cerr << "notice: " << gplanner::terminal_text(notice) << "\n";
-  for (const std::string& file : scene.input_files) inputs.push_back({"a file the scene loads", file});
+  for (const std::string& file : scene.input_files)
+    inputs.push_back({"a file the scene loads", file});
   gplanner::check_output_paths(outputs, inputs);
   if (interrupted()) return report_interruption({}, unwritten);
   const double load_s = seconds_since(load_start);
@@ -191,11 +192,11 @@ int run_check(int argc, char** argv) {
   std::cout << "scene       " << gplanner::terminal_text(scene_file) << " ("
             << gplanner::terminal_text(scene.name) << "), loaded in " << std::fixed
             << std::setprecision(3) << load_s << " s\n"
-            << "robot       " << gplanner::terminal_text(scene.robot.name) << ": " << scene.robot.links.size() << " link"
-            << (scene.robot.links.size() == 1 ? "" : "s") << ", " << scene.robot.triangle_count()
-            << " triangles, " << pairs.size() << " checked link pairs; "
-            << gplanner::base_type_name(space.base) << " base, " << space.dof() << " DOF (" << width
-            << " floats)\n"
+            << "robot       " << gplanner::terminal_text(scene.robot.name) << ": "
+            << scene.robot.links.size() << " link" << (scene.robot.links.size() == 1 ? "" : "s")
+            << ", " << scene.robot.triangle_count() << " triangles, " << pairs.size()
+            << " checked link pairs; " << gplanner::base_type_name(space.base) << " base, "
+            << space.dof() << " DOF (" << width << " floats)\n"
             << "obstacles   " << scene.obstacles.size() << " (" << scene.obstacle_triangle_count()
             << " triangles; " << scene.dropped_obstacle_triangles
             << " out of the robot's reach dropped)\n"

@@ -10,7 +10,6 @@
 #include <sstream>
 
 #include "command_line.h"
-#include "interruption.h"
 #include "gplanner/planner/checkers/checker_factory.h"
 #include "gplanner/planner/output/output_paths.h"
 #include "gplanner/planner/output/path_file.h"
@@ -20,6 +19,7 @@
 #include "gplanner/planner/planning/roadmap_planner.h"
 #include "gplanner/planner/planning/scene_metric.h"
 #include "gplanner/planner/scene/scene.h"
+#include "interruption.h"
 
 namespace gplan {
 namespace {
@@ -71,7 +71,8 @@ int run_plan(int argc, char** argv) {
   const gplanner::Scene scene = gplanner::load_scene(scene_file);
   for (const std::string& notice : scene.notices)
     std::cerr << "notice: " << gplanner::terminal_text(notice) << "\n";
-  for (const std::string& file : scene.input_files) inputs.push_back({"a file the scene loads", file});
+  for (const std::string& file : scene.input_files)
+    inputs.push_back({"a file the scene loads", file});
   gplanner::check_output_paths(outputs, inputs);
   std::vector<std::string> unwritten;
   for (const gplanner::NamedFile& output : outputs) unwritten.push_back(output_name(output));
@@ -124,8 +125,9 @@ int run_plan(int argc, char** argv) {
   // The outputs, each written whole or not at all; a signal stops before the next one.
   std::vector<std::string> written;
   const auto write = [&](const std::string& option, const std::function<void()>& write_file) {
-    const auto output = std::find_if(outputs.begin(), outputs.end(),
-                                     [&](const gplanner::NamedFile& o) { return o.name == option; });
+    const auto output =
+        std::find_if(outputs.begin(), outputs.end(),
+                     [&](const gplanner::NamedFile& o) { return o.name == option; });
     if (output == outputs.end() || interrupted()) return;
     write_file();
     written.push_back(output_name(*output));
@@ -145,8 +147,7 @@ int run_plan(int argc, char** argv) {
   const int width = scene.space.width();
   const std::size_t waypoints = result.path.size() / width;
   std::cout << std::fixed << "scene       " << gplanner::terminal_text(scene_file) << " ("
-            << gplanner::terminal_text(scene.name) << "), "
-            << scene.space.dof() << " DOF\n"
+            << gplanner::terminal_text(scene.name) << "), " << scene.space.dof() << " DOF\n"
             << "planner     " << gplanner::strategy_name(strategy) << ", seed " << options.seed
             << ", " << checker->backend() << " backend, k-NN on the " << neighbors->device() << "\n"
             << "roadmap     " << result.milestones << " milestones, " << result.edges << " edges ("

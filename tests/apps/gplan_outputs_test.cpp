@@ -175,10 +175,11 @@ TEST_F(GplanOutputs, TheSceneItsMeshesAndItsUrdfAreNeverOverwritten) {
 TEST_F(GplanOutputs, TheLoadedRoadmapIsNeverOverwritten) {
   const std::string roadmap = path("roadmap.bin");
   ASSERT_EQ(plan("--save-roadmap " + shell_quoted(roadmap)).exit_code, 0);
-  expect_refused("--load-roadmap " + shell_quoted(roadmap) + " --save-roadmap " + shell_quoted(roadmap),
-                 "--save-roadmap", "would overwrite the --load-roadmap file");
-  expect_refused("--load-roadmap " + shell_quoted(roadmap) + " --out " + shell_quoted(roadmap), "--out",
-                 "would overwrite the --load-roadmap file");
+  expect_refused(
+      "--load-roadmap " + shell_quoted(roadmap) + " --save-roadmap " + shell_quoted(roadmap),
+      "--save-roadmap", "would overwrite the --load-roadmap file");
+  expect_refused("--load-roadmap " + shell_quoted(roadmap) + " --out " + shell_quoted(roadmap),
+                 "--out", "would overwrite the --load-roadmap file");
 }
 
 TEST_F(GplanOutputs, TwoOutputsOnOnePathAreRefused) {
@@ -217,7 +218,8 @@ TEST_F(GplanOutputs, ALinkLoopAndAnOverlongNameAreClearErrors) {
   fs::create_symlink("loop2", path("loop1"));
   fs::create_symlink("loop1", path("loop2"));
   expect_refused("--out " + shell_quoted(path("loop1")), "--out", "too many symbolic links");
-  expect_refused("--out " + shell_quoted(path(std::string(300, 'x'))), "--out", "the name is too long");
+  expect_refused("--out " + shell_quoted(path(std::string(300, 'x'))), "--out",
+                 "the name is too long");
   const CommandResult run = plan("--out " + shell_quoted(path(std::string(300, 'x'))));
   EXPECT_LT(run.output.size(), 600u) << "a long name is shortened in the message";
 }
@@ -234,12 +236,12 @@ TEST_F(GplanOutputs, AReadOnlyFolderIsRefusedBeforePlanning) {
 TEST_F(GplanOutputs, NoPathSaysTheOutputsWereLeftAsTheyWere) {
   const std::string walled = folder_.write("walled.yaml", kWalledScene);
   const std::string out = folder_.write("path.yaml", "old\n");
-  const CommandResult run = run_gplan("plan " + shell_quoted(walled) +
-                                      " --backend cpu --time-limit 0.2 --out " + shell_quoted(out) +
-                                      " --picture " + shell_quoted(path("path.svg")));
+  const CommandResult run =
+      run_gplan("plan " + shell_quoted(walled) + " --backend cpu --time-limit 0.2 --out " +
+                shell_quoted(out) + " --picture " + shell_quoted(path("path.svg")));
   EXPECT_EQ(run.exit_code, 4) << run.output;
-  EXPECT_NE(run.output.find("gplan: no path, so nothing written to --out " + out +
-                            ", --picture " + path("path.svg")),
+  EXPECT_NE(run.output.find("gplan: no path, so nothing written to --out " + out + ", --picture " +
+                            path("path.svg")),
             std::string::npos)
       << run.output;
   EXPECT_EQ(read_file(out), "old\n");
@@ -303,10 +305,10 @@ TEST_F(GplanOutputs, SigtermEndsALongPlanCleanly) {
   const std::string walled = folder_.write("walled.yaml", kWalledScene);
   ScratchFolder logs;
   fs::create_directory(path("outputs"));
-  expect_clean_interruption({"plan", walled, "--backend", "cpu", "--time-limit", "60", "--out",
-                             path("outputs/path.yaml"), "--picture", path("outputs/path.svg"),
-                             "--save-roadmap", path("outputs/roadmap.bin")},
-                            SIGTERM, path("outputs"), logs.path() + "/log");
+  expect_clean_interruption(
+      {"plan", walled, "--backend", "cpu", "--time-limit", "60", "--out", path("outputs/path.yaml"),
+       "--picture", path("outputs/path.svg"), "--save-roadmap", path("outputs/roadmap.bin")},
+      SIGTERM, path("outputs"), logs.path() + "/log");
 }
 
 TEST_F(GplanOutputs, SigintEndsALongPlanCleanly) {
@@ -322,9 +324,9 @@ TEST_F(GplanOutputs, SigtermEndsALongCheckCleanly) {
   const std::string walled = folder_.write("walled.yaml", kWalledScene);
   ScratchFolder logs;
   fs::create_directory(path("outputs"));
-  expect_clean_interruption({"check", walled, "--backend", "fcl", "--n", "2000000", "--out",
-                             path("outputs/samples.txt")},
-                            SIGTERM, path("outputs"), logs.path() + "/log");
+  expect_clean_interruption(
+      {"check", walled, "--backend", "fcl", "--n", "2000000", "--out", path("outputs/samples.txt")},
+      SIGTERM, path("outputs"), logs.path() + "/log");
 }
 
 }  // namespace

@@ -107,15 +107,14 @@ OutputTarget writable_output_target(const std::string& option, const std::string
     // Through a link, say where it leads: the folder named is not in the path given.
     const std::string through =
         links > 0 ? " (the symbolic link leads to " + shown(current.string()) + ")" : "";
-    const std::string problem =
-        code == ENOENT ? "folder " + shown(given_folder.string()) + " does not exist" + through +
-                             "; create it or write elsewhere"
-                       : explain(code);
+    const std::string problem = code == ENOENT
+                                    ? "folder " + shown(given_folder.string()) + " does not exist" +
+                                          through + "; create it or write elsewhere"
+                                    : explain(code);
     throw OutputPathError(option, path, problem);
   }
   if (!fs::is_directory(folder, error)) {
-    throw OutputPathError(option, path,
-                          given_folder.string() + " is not a folder; fix the path");
+    throw OutputPathError(option, path, given_folder.string() + " is not a folder; fix the path");
   }
   OutputTarget target;
   target.path = (folder / name).string();

@@ -25,7 +25,8 @@ void write_path_file(const std::string& path, const Scene& scene, const PlanResu
     out << "backend: " << yaml_scalar(backend) << "\n";
     out << "length: " << result.length << "  # under the planner's metric\n";
     out << "entries: [";
-    for (int i = 0; i < width; ++i) out << (i ? ", " : "") << yaml_scalar(space.entry_name(robot, i));
+    for (int i = 0; i < width; ++i)
+      out << (i ? ", " : "") << yaml_scalar(space.entry_name(robot, i));
     out << "]\n";
     // Rows are in the scene frame; the file gives what the scene file gives: world (or
     // plane) coordinates, summed in double. Far from the origin (the frame moved) nine
@@ -67,7 +68,8 @@ void write_path_file(const std::string& path, const Scene& scene, const PlanResu
       bool any = false;
       for (std::size_t j = 0; j < robot.joints.size(); ++j) {
         if (!robot.joints[j].is_single_dof()) continue;
-        out << (any ? ", " : "    joints: {") << yaml_scalar(robot.joints[j].name) << ": " << positions[j];
+        out << (any ? ", " : "    joints: {") << yaml_scalar(robot.joints[j].name) << ": "
+            << positions[j];
         any = true;
       }
       if (any) out << "}\n";

@@ -70,8 +70,7 @@ void write_path_picture(const std::string& file, const Scene& scene,
         << h_px + 40 << "\" viewBox=\"-10 -30 " << w_px + 20 << ' ' << h_px + 40 << "\">\n"
         << "<rect x=\"-10\" y=\"-30\" width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
         << "<text x=\"0\" y=\"-12\" font-family=\"sans-serif\" font-size=\"14\">"
-        << xml_escaped(scene.name)
-        << ": " << m << " waypoints; view along "
+        << xml_escaped(scene.name) << ": " << m << " waypoints; view along "
         << "xyz"[drop] << " (obstacles grey, darker where they overlap)</text>\n";
     // Obstacles, triangle by triangle (walls seen edge-on show as lines), leaving out
     // those covering a tenth of the picture or more (floors and ceilings, which would

@@ -95,11 +95,21 @@ std::string xml_escaped(std::string_view text) {
     const std::size_t begin = at;
     const char32_t c = next_code_point(text, &at);
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
       default: {
         const bool allowed = c != kInvalid && (c >= 0x20 || c == '\t' || c == '\n' || c == '\r') &&
                              c != 0xFFFE && c != 0xFFFF;
@@ -121,12 +131,24 @@ std::string yaml_scalar(std::string_view text) {
     const std::size_t begin = at;
     const char32_t c = next_code_point(text, &at);
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
-      case kInvalid: out += kReplacement; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case kInvalid:
+        out += kReplacement;
+        break;
       default:
         if (is_control(c) || is_invisible_format(c) || c == 0xFFFE || c == 0xFFFF) {
           out += c <= 0xFF ? hex("\\x", c, 2) : hex("\\u", c, 4);

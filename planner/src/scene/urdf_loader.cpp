@@ -467,9 +467,8 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
           elements[i]->FirstChildElement("geometry")->FirstChildElement();
       const SourceLocation where{urdf_path, shape->GetLineNum(),
                                  "link '" + link->name + "' collision"};
-      const TriangleMesh element =
-          collision_geometry(*collision.geometry, urdf_folder, packages, where, notices,
-                             &robot.mesh_files);
+      const TriangleMesh element = collision_geometry(*collision.geometry, urdf_folder, packages,
+                                                      where, notices, &robot.mesh_files);
       // Solid where the element's own components are closed (docs/design.md, "Solids").
       const std::vector<std::uint8_t> solid = closed_triangles(mesh_components(element));
       out.collision.append(element, to_isometry(collision.origin));

@@ -63,8 +63,7 @@ TEST(AtomicFile, ANonRegularTargetIsRefusedAndKept) {
   testing::ScratchFolder scratch;
   const std::string fifo = scratch.path() + "/fifo";
   ASSERT_EQ(mkfifo(fifo.c_str(), 0644), 0);
-  EXPECT_THROW(write_file_atomically(fifo, [](std::ostream& out) { out << "x"; }),
-               OutputPathError);
+  EXPECT_THROW(write_file_atomically(fifo, [](std::ostream& out) { out << "x"; }), OutputPathError);
   EXPECT_EQ(std::filesystem::status(fifo).type(), std::filesystem::file_type::fifo);
   EXPECT_THROW(write_file_atomically("/dev/null", [](std::ostream& out) { out << "x"; }),
                OutputPathError);

@@ -87,8 +87,7 @@ TEST(OutputPaths, LinksAreFollowedToTheirTarget) {
   EXPECT_FALSE(target.exists);
   EXPECT_EQ(target.path, fs::canonical(scratch.path()).string() + "/real/new.yaml");
   fs::create_symlink("/dev/null", scratch.path() + "/to_device");
-  EXPECT_NE(refusal_of(scratch.path() + "/to_device").find("character device"),
-            std::string::npos);
+  EXPECT_NE(refusal_of(scratch.path() + "/to_device").find("character device"), std::string::npos);
 }
 
 TEST(OutputPaths, AReadOnlyFolderOrFileIsRefused) {
@@ -111,21 +110,22 @@ TEST(OutputPaths, AnOutputIsNeverAnInputOrAnotherOutput) {
   fs::create_symlink("scene.yaml", scratch.path() + "/soft.yaml");
   const std::vector<NamedFile> inputs{{"the scene file", scene}};
   for (const std::string& name : {"scene.yaml", "hard.yaml", "soft.yaml", "./scene.yaml"}) {
-    const std::string message = refusal(
-        [&] { check_output_paths({{"--out", scratch.path() + "/" + name}}, inputs); });
+    const std::string message = refusal([&] {
+      check_output_paths({{"--out", scratch.path() + "/" + name}}, inputs);
+    });
     EXPECT_NE(message.find("would overwrite the scene file"), std::string::npos) << name;
   }
   const std::string message = refusal([&] {
-    check_output_paths({{"--out", scratch.path() + "/new"}, {"--picture", scratch.path() + "/./new"}},
-                       inputs);
+    check_output_paths(
+        {{"--out", scratch.path() + "/new"}, {"--picture", scratch.path() + "/./new"}}, inputs);
   });
   EXPECT_NE(message.find("--picture " + scratch.path() + "/./new: is also --out"),
             std::string::npos)
       << message;
   EXPECT_EQ(refusal([&] {
-              check_output_paths({{"--out", scratch.path() + "/a"}, {"--picture",
-                                                                     scratch.path() + "/b"}},
-                                 {{"the scene file", scene}, {"missing", scratch.path() + "/m"}});
+              check_output_paths(
+                  {{"--out", scratch.path() + "/a"}, {"--picture", scratch.path() + "/b"}},
+                  {{"the scene file", scene}, {"missing", scratch.path() + "/m"}});
             }),
             "");
 }

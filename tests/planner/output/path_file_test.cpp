@@ -53,8 +53,8 @@ TEST(PathFile, RoundTripsTheWaypoints) {
 // Joint names and a scene file name that would break unquoted YAML read back as given.
 TEST(PathFile, HostileNamesReadBackAsGiven) {
   Scene scene = load_scene(testing::project_root() + "/scenes/pr2_base_arm.yaml");
-  const std::vector<std::string> hostile = {"a: b", "#x", "\"", "\\", "new\nline", "- z",
-                                            "*alias", "{", "true", "\x1b[2J"};
+  const std::vector<std::string> hostile = {"a: b", "#x",     "\"", "\\",   "new\nline",
+                                            "- z",  "*alias", "{",  "true", "\x1b[2J"};
   std::vector<std::string> names;
   int renamed = 0;
   for (Joint& joint : scene.robot.joints) {

@@ -13,12 +13,46 @@ namespace {
 
 // Names a careless user or an attacker might give: YAML syntax, quotes, control
 // characters, escape sequences, invalid UTF-8 cut out of a longer character.
-const std::vector<std::string> kHostileNames = {
-    "a: b", "#x", "\"", "\\", "line\nbreak", "- z", "*alias", "&anchor", "{", "}", "[", "!tag",
-    "%directive", "@at", "`tick", "'single'", "? key", "|", ">", "true", "No", "null", "~", "1.5",
-    "0x10", "", " leading", "trailing ", "tab\there", "cr\rhere", std::string("nul\0byte", 8),
-    "\x1b[31mred\x1b[0m", "caf\xc3\xa9", "\xe2\x80\xae" "reversed", "del\x7f", "bom\xef\xbb\xbf",
-    "x", "joint_1", "a-b.c/d"};
+const std::vector<std::string> kHostileNames = {"a: b",
+                                                "#x",
+                                                "\"",
+                                                "\\",
+                                                "line\nbreak",
+                                                "- z",
+                                                "*alias",
+                                                "&anchor",
+                                                "{",
+                                                "}",
+                                                "[",
+                                                "!tag",
+                                                "%directive",
+                                                "@at",
+                                                "`tick",
+                                                "'single'",
+                                                "? key",
+                                                "|",
+                                                ">",
+                                                "true",
+                                                "No",
+                                                "null",
+                                                "~",
+                                                "1.5",
+                                                "0x10",
+                                                "",
+                                                " leading",
+                                                "trailing ",
+                                                "tab\there",
+                                                "cr\rhere",
+                                                std::string("nul\0byte", 8),
+                                                "\x1b[31mred\x1b[0m",
+                                                "caf\xc3\xa9",
+                                                "\xe2\x80\xae"
+                                                "reversed",
+                                                "del\x7f",
+                                                "bom\xef\xbb\xbf",
+                                                "x",
+                                                "joint_1",
+                                                "a-b.c/d"};
 
 TEST(TextEscaping, YamlScalarsReadBackAsWritten) {
   for (const std::string& name : kHostileNames) {
@@ -54,7 +88,9 @@ TEST(TextEscaping, YamlKeepsPlainWordsPlain) {
 TEST(TextEscaping, XmlHasNoMarkupOrForbiddenCharactersLeft) {
   EXPECT_EQ(xml_escaped("<script>alert('x') & \"y\"</script>"),
             "&lt;script&gt;alert(&apos;x&apos;) &amp; &quot;y&quot;&lt;/script&gt;");
-  EXPECT_EQ(xml_escaped(std::string("a\0b\x1b", 4)), "a\xef\xbf\xbd" "b\xef\xbf\xbd");
+  EXPECT_EQ(xml_escaped(std::string("a\0b\x1b", 4)),
+            "a\xef\xbf\xbd"
+            "b\xef\xbf\xbd");
   EXPECT_EQ(xml_escaped("caf\xc3\xa9\n"), "caf\xc3\xa9\n");
   EXPECT_EQ(xml_escaped("\xc3"), "\xef\xbf\xbd") << "a cut UTF-8 sequence";
 }
@@ -62,9 +98,17 @@ TEST(TextEscaping, XmlHasNoMarkupOrForbiddenCharactersLeft) {
 TEST(TextEscaping, TerminalTextHasNoControlCharacters) {
   EXPECT_EQ(terminal_text("\x1b]0;title\x07red\x1b[31m"), "\\e]0;title\\x07red\\e[31m");
   EXPECT_EQ(terminal_text("a\nb\tc\r"), "a\\nb\\tc\\r");
-  EXPECT_EQ(terminal_text("\xc2\x9b" "2J"), "\\u009b2J") << "C1 CSI";
-  EXPECT_EQ(terminal_text("\xe2\x80\xae" "abc"), "\\u202eabc") << "a bidirectional override";
-  EXPECT_EQ(terminal_text("\xff" "x"), "\\xffx");
+  EXPECT_EQ(terminal_text("\xc2\x9b"
+                          "2J"),
+            "\\u009b2J")
+      << "C1 CSI";
+  EXPECT_EQ(terminal_text("\xe2\x80\xae"
+                          "abc"),
+            "\\u202eabc")
+      << "a bidirectional override";
+  EXPECT_EQ(terminal_text("\xff"
+                          "x"),
+            "\\xffx");
   EXPECT_EQ(terminal_text("caf\xc3\xa9 / scenes/a.yaml"), "caf\xc3\xa9 / scenes/a.yaml");
   for (const std::string& name : kHostileNames) {
     for (const char c : terminal_text(name)) {

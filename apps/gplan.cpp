@@ -6,6 +6,7 @@
 #include "check_command.h"
 #include "command_line.h"
 #include "gplanner/common/gpu_device.h"
+#include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/scene/input_error.h"
 #include "plan_command.h"
 
@@ -37,7 +38,14 @@ const char* kUsage =
     "      --picture a drawing of it (SVG); exit 4\n"
     "      when no path is found within the time limit\n"
     "  gplan info\n"
-    "      how gplanner was built and which GPU it can use\n";
+    "      how gplanner was built and which GPU it can use\n"
+    "Output files (--out, --picture, --save-roadmap) are checked before any work: a\n"
+    "regular file or a new one in a writable folder, never a folder or device, never a\n"
+    "file the run reads or another output; a symbolic link is written through to its\n"
+    "target. Each is written whole or not at all. Exit codes: 0 done, 1 internal error,\n"
+    "2 bad input or usage, 3 checkers disagree (check --compare), 4 no path (plan);\n"
+    "SIGINT or SIGTERM stops a run cleanly, writing nothing more and leaving no temporary\n"
+    "file: exit 130 (SIGINT) or 143 (SIGTERM); a second signal ends it at once.\n";
 
 int run_info() {
   const gplanner::GpuDevice device = gplanner::query_gpu_device();
@@ -67,13 +75,13 @@ int main(int argc, char** argv) {
     if (command == "info") return run_info();
     throw gplan::UsageError("unknown command '" + command + "'");
   } catch (const gplan::UsageError& e) {
-    std::cerr << "gplan: " << e.what() << "\n" << kUsage;
+    std::cerr << "gplan: " << gplanner::terminal_text(e.what()) << "\n" << kUsage;
     return 2;
   } catch (const gplanner::InputError& e) {
-    std::cerr << "gplan: " << e.what() << "\n";
+    std::cerr << "gplan: " << gplanner::terminal_text(e.what()) << "\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "gplan: error: " << e.what() << "\n";
+    std::cerr << "gplan: error: " << gplanner::terminal_text(e.what()) << "\n";
     return 1;
   }
 }

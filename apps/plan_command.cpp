@@ -2,8 +2,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -12,30 +14,29 @@
 #include "gplanner/common/parallel_for.h"
 #include "gplanner/common/physical_memory.h"
 #include "gplanner/planner/checkers/checker_factory.h"
+#include "gplanner/planner/output/output_paths.h"
 #include "gplanner/planner/output/path_file.h"
 #include "gplanner/planner/output/path_picture.h"
+#include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/planning/neighbor_finder.h"
 #include "gplanner/planner/planning/roadmap.h"
 #include "gplanner/planner/planning/roadmap_planner.h"
 #include "gplanner/planner/planning/scene_metric.h"
 #include "gplanner/planner/scene/scene.h"
+#include "interruption.h"
 
 namespace gplan {
 namespace {
 
-// Refuses a file that cannot be written before the work, not after.
-void require_writable_file(const std::string& option, const std::string& file) {
-  if (file.empty()) return;
-  const std::filesystem::path folder = std::filesystem::path(file).parent_path();
-  if (std::filesystem::is_directory(file) ||
-      !std::filesystem::is_directory(folder.empty() ? "." : folder)) {
-    throw UsageError("--" + option + " " + file + ": not a file in an existing folder");
-  }
+// "--out FILE" for messages.
+std::string output_name(const gplanner::NamedFile& output) {
+  return output.name + " " + output.path;
 }
 
 }  // namespace
 
 int run_plan(int argc, char** argv) {
+  catch_interruptions();
   const CommandLine args(argc, argv, 2,
                          {"planner", "backend", "seed", "time-limit", "milestones", "traversal",
                           "threads", "load-roadmap", "save-roadmap", "out", "picture"},
@@ -59,15 +60,28 @@ int run_plan(int argc, char** argv) {
   const std::string save = args.text("save-roadmap", "");
   const std::string load = args.text("load-roadmap", "");
   const std::string picture = args.text("picture", "");
-  require_writable_file("out", out);
-  require_writable_file("picture", picture);
-  require_writable_file("save-roadmap", save);
-  if (!load.empty() && !std::filesystem::is_regular_file(load))
+  // Every output checked before any work (gplanner::check_output_paths): against the
+  // inputs named here, then against every file the scene loads.
+  std::vector<gplanner::NamedFile> outputs;
+  for (const char* option : {"out", "picture", "save-roadmap"}) {
+    if (args.has(option)) outputs.push_back({std::string("--") + option, args.text(option, "")});
+  }
+  std::vector<gplanner::NamedFile> inputs{{"the scene file", scene_file}};
+  if (args.has("load-roadmap")) inputs.push_back({"the --load-roadmap file", load});
+  gplanner::check_output_paths(outputs, inputs);
+  if (args.has("load-roadmap") && !std::filesystem::is_regular_file(load))
     throw UsageError("--load-roadmap " + load + ": no such file");
 
   const auto setup_start = std::chrono::steady_clock::now();
   const gplanner::Scene scene = gplanner::load_scene(scene_file);
-  for (const std::string& notice : scene.notices) std::cerr << "notice: " << notice << "\n";
+  for (const std::string& notice : scene.notices)
+    std::cerr << "notice: " << gplanner::terminal_text(notice) << "\n";
+  for (const std::string& file : scene.input_files)
+    inputs.push_back({"a file the scene loads", file});
+  gplanner::check_output_paths(outputs, inputs);
+  std::vector<std::string> unwritten;
+  for (const gplanner::NamedFile& output : outputs) unwritten.push_back(output_name(output));
+  if (interrupted()) return report_interruption({}, unwritten);
   gplanner::PlanOptions options = gplanner::plan_options(scene);
   options.seed = args.count("seed", options.seed, 0, ~0ULL);
   options.time_limit_s = args.positive_number("time-limit", options.time_limit_s);
@@ -88,7 +102,7 @@ int run_plan(int argc, char** argv) {
   try {
     std::string notice;
     checker = gplanner::make_collision_checker(scene, backend, checker_options, &notice);
-    if (!notice.empty()) std::cerr << "notice: " << notice << "\n";
+    if (!notice.empty()) std::cerr << "notice: " << gplanner::terminal_text(notice) << "\n";
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--backend: ") + e.what());
   }
@@ -97,7 +111,8 @@ int run_plan(int argc, char** argv) {
   std::string knn_notice;
   std::unique_ptr<gplanner::NeighborFinder> neighbors =
       gplanner::make_neighbor_finder(metric, checker->backend(), &knn_notice);
-  if (!knn_notice.empty()) std::cerr << "notice: " << knn_notice << "\n";
+  if (!knn_notice.empty()) std::cerr << "notice: " << gplanner::terminal_text(knn_notice) << "\n";
+  options.should_stop = [] { return interrupted(); };
 
   // Progress: a line updated in place on a terminal, a line per round otherwise once
   // planning has taken a second.
@@ -116,24 +131,39 @@ int run_plan(int argc, char** argv) {
   };
 
   gplanner::RoadmapPlanner planner(scene, checker.get(), neighbors.get(), strategy, options);
-  if (!load.empty()) planner.set_roadmap(gplanner::load_roadmap(scene, load));
+  if (args.has("load-roadmap")) planner.set_roadmap(gplanner::load_roadmap(scene, load));
   // Setup (scene, checker, roadmap file) apart from planning, which --time-limit bounds.
   const double setup_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
   const gplanner::PlanResult result = planner.solve(scene.start.data(), scene.goal.data());
   if (terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
-  if (!save.empty()) gplanner::save_roadmap(planner.roadmap(), scene, save);
-  if (result.solved && !out.empty()) {
-    gplanner::write_path_file(out, scene, result, gplanner::strategy_name(strategy),
-                              checker->backend());
+
+  // The outputs, each written whole or not at all; a signal stops before the next one.
+  std::vector<std::string> written;
+  const auto write = [&](const std::string& option, const std::function<void()>& write_file) {
+    const auto output =
+        std::find_if(outputs.begin(), outputs.end(),
+                     [&](const gplanner::NamedFile& o) { return o.name == option; });
+    if (output == outputs.end() || interrupted()) return;
+    write_file();
+    written.push_back(output_name(*output));
+    unwritten.erase(std::find(unwritten.begin(), unwritten.end(), output_name(*output)));
+  };
+  write("--save-roadmap", [&] { gplanner::save_roadmap(planner.roadmap(), scene, save); });
+  if (result.solved) {
+    write("--out", [&] {
+      gplanner::write_path_file(out, scene, result, gplanner::strategy_name(strategy),
+                                checker->backend());
+    });
+    write("--picture", [&] { gplanner::write_path_picture(picture, scene, result.path); });
   }
-  if (result.solved && !picture.empty()) gplanner::write_path_picture(picture, scene, result.path);
+  if (interrupted()) return report_interruption(written, unwritten);
 
   const gplanner::PlanTimes& t = result.times;
   const int width = scene.space.width();
   const std::size_t waypoints = result.path.size() / width;
-  std::cout << std::fixed << "scene       " << scene_file << " (" << scene.name << "), "
-            << scene.space.dof() << " DOF\n"
+  std::cout << std::fixed << "scene       " << gplanner::terminal_text(scene_file) << " ("
+            << gplanner::terminal_text(scene.name) << "), " << scene.space.dof() << " DOF\n"
             << "planner     " << gplanner::strategy_name(strategy) << ", seed " << options.seed
             << ", " << checker->backend() << " backend, k-NN on the " << neighbors->device() << "\n"
             << "roadmap     " << result.milestones << " milestones, " << result.edges << " edges ("
@@ -149,9 +179,8 @@ int run_plan(int argc, char** argv) {
   std::cout << std::setprecision(4) << "time        " << t.total << " s: sampling " << t.sampling
             << ", state checks " << t.state_checks << ", k-NN " << t.knn << ", search " << t.search
             << ", edge checks " << t.edge_checks << ", shortcutting " << t.shortcutting << "\n";
-  if (result.solved && !out.empty()) std::cout << "wrote       " << out << "\n";
-  if (result.solved && !picture.empty()) std::cout << "wrote       " << picture << " (picture)\n";
-  if (!save.empty()) std::cout << "wrote       " << save << " (roadmap)\n";
+  for (const std::string& file : written)
+    std::cout << "wrote       " << gplanner::terminal_text(file) << "\n";
   if (args.flag("json")) {
     std::cout << std::setprecision(6) << "{\"scene\":" << json_string(scene_file)
               << ",\"name\":" << json_string(scene.name)
@@ -184,6 +213,12 @@ int run_plan(int argc, char** argv) {
     std::cerr << "gplan: no path found within " << options.time_limit_s << " s ("
               << result.milestones << " milestones); raise --time-limit or the scene's "
               << "planner.roadmap.milestones\n";
+    if (!unwritten.empty()) {
+      std::string files;
+      for (const std::string& file : unwritten) files += (files.empty() ? "" : ", ") + file;
+      std::cerr << "gplan: no path, so nothing written to " << gplanner::terminal_text(files)
+                << "; what was there is left as it was\n";
+    }
     return 4;
   }
   return 0;

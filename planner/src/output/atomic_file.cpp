@@ -1,37 +1,69 @@
 #include "gplanner/planner/output/atomic_file.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <vector>
+
+#include "gplanner/planner/output/output_paths.h"
 
 namespace gplanner {
+namespace {
+
+// Permission bits for a new file: what the umask leaves of rw-rw-rw-, as creating it
+// directly would give.
+mode_t new_file_mode() {
+  const mode_t mask = umask(0);
+  umask(mask);
+  return 0666 & ~mask;
+}
+
+}  // namespace
 
 void write_file_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& write) {
   namespace fs = std::filesystem;
-  const fs::path target(path);
-  if (fs::is_directory(target)) throw std::runtime_error(path + " is a folder, not a file");
-  const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  if (!fs::is_directory(folder)) {
-    throw std::runtime_error("folder " + folder.string() + " does not exist");
+  // Refuses folders, devices, FIFOs and sockets, follows symbolic links to the file
+  // they name, and checks that the folder takes new files.
+  const OutputTarget target = writable_output_target("", path);
+  const fs::path file(target.path);
+  // A fresh temporary name, created exclusively (mkstemp), so that nothing planted
+  // beside the target is followed; short enough for any file name.
+  std::string pattern =
+      (file.parent_path() / ("." + file.filename().string().substr(0, 200) + ".XXXXXX")).string();
+  std::vector<char> name(pattern.begin(), pattern.end());
+  name.push_back('\0');
+  const int descriptor = mkstemp(name.data());
+  if (descriptor < 0) {
+    throw std::runtime_error("cannot write " + path + ": cannot create a file in " +
+                             file.parent_path().string() + ": " + std::strerror(errno));
   }
-  const std::string temporary =
-      (folder / ("." + target.filename().string() + ".tmp." + std::to_string(getpid()))).string();
+  const std::string temporary(name.data());
   try {
+    const mode_t mode = target.exists ? target.mode : new_file_mode();
+    const int chmod_error = fchmod(descriptor, mode) == 0 ? 0 : errno;
+    // Replacing a file keeps its owner where we may (root replacing a user's file); an
+    // ordinary user cannot give a file away, and the file becomes theirs.
+    if (target.exists && fchown(descriptor, target.owner, target.group) != 0) errno = 0;
+    close(descriptor);
+    if (chmod_error != 0) {
+      throw std::runtime_error("cannot write " + path + ": " + std::strerror(chmod_error));
+    }
     {
       std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-      if (!out)
-        throw std::runtime_error("cannot create " + temporary + ": " + std::strerror(errno));
+      if (!out) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
       write(out);
       out.flush();
-      if (!out) throw std::runtime_error("writing " + temporary + " failed (disk full?)");
+      if (!out) throw std::runtime_error("writing " + path + " failed (disk full?)");
     }
-    if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    if (std::rename(temporary.c_str(), target.path.c_str()) != 0) {
       throw std::runtime_error("cannot replace " + path + ": " + std::strerror(errno));
     }
   } catch (...) {

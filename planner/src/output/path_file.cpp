@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "gplanner/planner/output/atomic_file.h"
+#include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/scene/scene.h"
 
 namespace gplanner {
@@ -15,15 +16,17 @@ void write_path_file(const std::string& path, const Scene& scene, const PlanResu
   const int width = space.width();
   write_file_atomically(path, [&](std::ostream& out) {
     out << std::setprecision(9);
-    out << "# A path from the start to the goal of " << scene.file << ", by gplan plan.\n";
-    out << "scene: \"";
-    for (const char c : scene.file) out << (c == '"' || c == '\\' ? "\\" : "") << c;
-    out << "\"\n";
-    out << "planner: " << planner << "\n";
-    out << "backend: " << backend << "\n";
+    // Every name taken from input is a YAML scalar that reads back as written
+    // (yaml_scalar), in the comment too, where a newline would end it.
+    out << "# A path from the start to the goal of " << yaml_scalar(scene.file)
+        << ", by gplan plan.\n";
+    out << "scene: " << yaml_scalar(scene.file) << "\n";
+    out << "planner: " << yaml_scalar(planner) << "\n";
+    out << "backend: " << yaml_scalar(backend) << "\n";
     out << "length: " << result.length << "  # under the planner's metric\n";
     out << "entries: [";
-    for (int i = 0; i < width; ++i) out << (i ? ", " : "") << space.entry_name(robot, i);
+    for (int i = 0; i < width; ++i)
+      out << (i ? ", " : "") << yaml_scalar(space.entry_name(robot, i));
     out << "]\n";
     // Rows are in the scene frame; the file gives what the scene file gives: world (or
     // plane) coordinates, summed in double. Far from the origin (the frame moved) nine
@@ -65,7 +68,8 @@ void write_path_file(const std::string& path, const Scene& scene, const PlanResu
       bool any = false;
       for (std::size_t j = 0; j < robot.joints.size(); ++j) {
         if (!robot.joints[j].is_single_dof()) continue;
-        out << (any ? ", " : "    joints: {") << robot.joints[j].name << ": " << positions[j];
+        out << (any ? ", " : "    joints: {") << yaml_scalar(robot.joints[j].name) << ": "
+            << positions[j];
         any = true;
       }
       if (any) out << "}\n";

@@ -5,6 +5,7 @@
 #include <iomanip>
 
 #include "gplanner/planner/output/atomic_file.h"
+#include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/scene/forward_kinematics.h"
 #include "gplanner/planner/scene/scene.h"
 
@@ -68,8 +69,8 @@ void write_path_picture(const std::string& file, const Scene& scene,
     out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << w_px + 20 << "\" height=\""
         << h_px + 40 << "\" viewBox=\"-10 -30 " << w_px + 20 << ' ' << h_px + 40 << "\">\n"
         << "<rect x=\"-10\" y=\"-30\" width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-        << "<text x=\"0\" y=\"-12\" font-family=\"sans-serif\" font-size=\"14\">" << scene.name
-        << ": " << m << " waypoints; view along "
+        << "<text x=\"0\" y=\"-12\" font-family=\"sans-serif\" font-size=\"14\">"
+        << xml_escaped(scene.name) << ": " << m << " waypoints; view along "
         << "xyz"[drop] << " (obstacles grey, darker where they overlap)</text>\n";
     // Obstacles, triangle by triangle (walls seen edge-on show as lines), leaving out
     // those covering a tenth of the picture or more (floors and ceilings, which would

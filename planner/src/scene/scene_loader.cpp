@@ -211,6 +211,7 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
       in.fail(node["base"], key + ".base", "a mesh robot is a rigid body with a floating base");
     }
     const std::string mesh_path = in.path(node["mesh"], key + ".mesh");
+    scene->input_files.push_back(mesh_path);
     TriangleMesh mesh = load_mesh(mesh_path, Eigen::Vector3d::Ones(),
                                   in.at(node["mesh"], key + ".mesh"), &scene->notices);
     scene->robot =
@@ -229,11 +230,15 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
     }
   }
   const std::string urdf_path = in.path(node["urdf"], key + ".urdf");
+  scene->input_files.push_back(urdf_path);
   scene->robot =
       load_urdf(urdf_path, packages, in.at(node["urdf"], key + ".urdf"), &scene->notices);
   RobotModel& robot = scene->robot;
+  scene->input_files.insert(scene->input_files.end(), robot.mesh_files.begin(),
+                            robot.mesh_files.end());
   if (node["srdf"]) {
     const std::string srdf_path = in.path(node["srdf"], key + ".srdf");
+    scene->input_files.push_back(srdf_path);
     apply_srdf(&robot, srdf_path, in.at(node["srdf"], key + ".srdf"), &scene->notices);
   }
 
@@ -459,6 +464,7 @@ void read_obstacles(const YamlReader& in, const YAML::Node& node, Scene* scene) 
     TriangleMesh mesh;
     if (item["mesh"]) {
       const std::string path = in.path(item["mesh"], key + ".mesh");
+      scene->input_files.push_back(path);
       const Eigen::Vector3d scale =
           item["scale"] ? in.vector3(item["scale"], key + ".scale") : Eigen::Vector3d::Ones();
       if ((scale.array() == 0).any())
@@ -635,6 +641,7 @@ Scene load_scene(const std::string& path) {
   const YamlReader in(path);
   Scene scene;
   scene.file = path;
+  scene.input_files.push_back(path);
   try {
     in.expect_map(root, "",
                   {"name", "description", "narrowest_passage", "robot", "obstacles", "bounds",

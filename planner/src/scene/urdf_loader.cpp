@@ -86,7 +86,8 @@ JointType to_joint_type(int urdf_type) {
 // already, so that its sizes and scale are known to be positive (non-zero) and finite.
 TriangleMesh collision_geometry(const urdf::Geometry& geometry, const std::string& urdf_folder,
                                 const PackageMap& packages, const SourceLocation& where,
-                                std::vector<std::string>* notices) {
+                                std::vector<std::string>* notices,
+                                std::vector<std::string>* mesh_files) {
   switch (geometry.type) {
     case urdf::Geometry::BOX: {
       const auto& box = static_cast<const urdf::Box&>(geometry);
@@ -101,6 +102,7 @@ TriangleMesh collision_geometry(const urdf::Geometry& geometry, const std::strin
     case urdf::Geometry::MESH: {
       const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
       const std::string path = resolve_resource(mesh.filename, urdf_folder, packages, where);
+      mesh_files->push_back(path);
       return load_mesh(path, Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z), where,
                        notices);
     }
@@ -465,8 +467,8 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
           elements[i]->FirstChildElement("geometry")->FirstChildElement();
       const SourceLocation where{urdf_path, shape->GetLineNum(),
                                  "link '" + link->name + "' collision"};
-      const TriangleMesh element =
-          collision_geometry(*collision.geometry, urdf_folder, packages, where, notices);
+      const TriangleMesh element = collision_geometry(*collision.geometry, urdf_folder, packages,
+                                                      where, notices, &robot.mesh_files);
       // Solid where the element's own components are closed (docs/design.md, "Solids").
       const std::vector<std::uint8_t> solid = closed_triangles(mesh_components(element));
       out.collision.append(element, to_isometry(collision.origin));

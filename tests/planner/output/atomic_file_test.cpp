@@ -2,6 +2,8 @@
 
 #include "gplanner/planner/output/atomic_file.h"
 
+#include <sys/stat.h>
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "gplanner/planner/output/output_paths.h"
 #include "test_support.h"
 
 namespace gplanner {
@@ -54,6 +57,46 @@ TEST(AtomicFile, AMissingFolderIsAnError) {
   EXPECT_THROW(write_file_atomically(path, [](std::ostream& out) { out << "x"; }),
                std::runtime_error);
   EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+TEST(AtomicFile, ANonRegularTargetIsRefusedAndKept) {
+  testing::ScratchFolder scratch;
+  const std::string fifo = scratch.path() + "/fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0644), 0);
+  EXPECT_THROW(write_file_atomically(fifo, [](std::ostream& out) { out << "x"; }), OutputPathError);
+  EXPECT_EQ(std::filesystem::status(fifo).type(), std::filesystem::file_type::fifo);
+  EXPECT_THROW(write_file_atomically("/dev/null", [](std::ostream& out) { out << "x"; }),
+               OutputPathError);
+  struct stat status {};
+  ASSERT_EQ(stat("/dev/null", &status), 0);
+  EXPECT_TRUE(S_ISCHR(status.st_mode));
+  EXPECT_EQ(files_in(scratch.path()), 1u);
+}
+
+TEST(AtomicFile, WritesThroughASymbolicLinkKeepingPermissionBits) {
+  testing::ScratchFolder scratch;
+  const std::string target = scratch.write("target.txt", "old\n");
+  ASSERT_EQ(chmod(target.c_str(), 0600), 0);
+  const std::string link = scratch.path() + "/link.txt";
+  std::filesystem::create_symlink("target.txt", link);
+  write_file_atomically(link, [](std::ostream& out) { out << "new\n"; });
+  EXPECT_TRUE(std::filesystem::is_symlink(link));
+  EXPECT_EQ(read_file(target), "new\n");
+  struct stat status {};
+  ASSERT_EQ(stat(target.c_str(), &status), 0);
+  EXPECT_EQ(status.st_mode & 07777, 0600u);
+  EXPECT_EQ(files_in(scratch.path()), 2u) << "no temporary file is left behind";
+}
+
+TEST(AtomicFile, ANewFileGetsTheUsualPermissionBits) {
+  testing::ScratchFolder scratch;
+  const mode_t mask = umask(022);
+  const std::string path = scratch.path() + "/new.txt";
+  write_file_atomically(path, [](std::ostream& out) { out << "x"; });
+  umask(mask);
+  struct stat status {};
+  ASSERT_EQ(stat(path.c_str(), &status), 0);
+  EXPECT_EQ(status.st_mode & 07777, 0644u) << "not the temporary file's 0600";
 }
 
 }  // namespace

@@ -50,5 +50,43 @@ TEST(PathFile, RoundTripsTheWaypoints) {
   }
 }
 
+// Joint names and a scene file name that would break unquoted YAML read back as given.
+TEST(PathFile, HostileNamesReadBackAsGiven) {
+  Scene scene = load_scene(testing::project_root() + "/scenes/pr2_base_arm.yaml");
+  const std::vector<std::string> hostile = {"a: b", "#x",     "\"", "\\",   "new\nline",
+                                            "- z",  "*alias", "{",  "true", "\x1b[2J"};
+  std::vector<std::string> names;
+  int renamed = 0;
+  for (Joint& joint : scene.robot.joints) {
+    if (!joint.is_single_dof()) continue;
+    joint.name = hostile[renamed % hostile.size()] + "_" + std::to_string(renamed);
+    // The first of them without a suffix, as hostile as given.
+    if (renamed < static_cast<int>(hostile.size())) joint.name = hostile[renamed];
+    ++renamed;
+  }
+  ASSERT_GE(renamed, static_cast<int>(hostile.size()));
+  scene.file = "scene: \"odd\"\n# name.yaml";
+  const int width = scene.space.width();
+  PlanResult result;
+  result.solved = true;
+  result.path = testing::sample_configurations(scene, 2, 3);
+  testing::ScratchFolder scratch;
+  const std::string file = scratch.path() + "/path.yaml";
+  write_path_file(file, scene, result, "lazyprm", "cpu");
+
+  const YAML::Node root = YAML::LoadFile(file);
+  EXPECT_EQ(root["scene"].as<std::string>(), scene.file);
+  ASSERT_EQ(root["entries"].size(), static_cast<std::size_t>(width));
+  for (int i = 0; i < width; ++i)
+    EXPECT_EQ(root["entries"][i].as<std::string>(), scene.space.entry_name(scene.robot, i));
+  const YAML::Node joints = root["waypoints"][0]["joints"];
+  ASSERT_TRUE(joints.IsMap());
+  EXPECT_EQ(joints.size(), static_cast<std::size_t>(renamed));
+  for (const Joint& joint : scene.robot.joints) {
+    if (!joint.is_single_dof()) continue;
+    EXPECT_TRUE(joints[joint.name].IsScalar()) << "joint '" << joint.name << "' read back";
+  }
+}
+
 }  // namespace
 }  // namespace gplanner

@@ -66,6 +66,9 @@ struct Scene {
   PlannerSettings planner;
   // Things skipped or changed while loading (the scene frame, when moved), a line each.
   std::vector<std::string> notices;
+  // Every file read to build the scene (the scene file, URDF, SRDF, each mesh), as
+  // named; outputs must not be any of them (check_output_paths).
+  std::vector<std::string> input_files;
 
   Eigen::Isometry3d X_WS() const;
   std::size_t obstacle_triangle_count() const;

@@ -241,6 +241,15 @@ Roadmap load_roadmap(const Scene& scene, const std::string& path) {
   std::memcpy(&width, data.data() + kMagicBytes + 8, sizeof(width));
   std::memcpy(&vertices, data.data() + kMagicBytes + 12, sizeof(vertices));
   std::memcpy(&edges, data.data() + kMagicBytes + 20, sizeof(edges));
+  // Before the sizes: another scene may have another width.
+  std::uint64_t fingerprint = 0;
+  std::memcpy(&fingerprint, data.data() + kMagicBytes, sizeof(fingerprint));
+  if (fingerprint != scene_fingerprint(scene)) {
+    throw InputError(file, "roadmap belongs to another scene, or to other settings of '" +
+                               scene.file +
+                               "' (robot, obstacles, bounds, weights, tolerance or resolution "
+                               "differ); build it again for this scene");
+  }
   const std::uintmax_t body = size - kHeaderBytes - kChecksumBytes;
   if (width != scene.space.width() || vertices > body / (sizeof(float) * std::max(width, 1)) ||
       edges > body / kEdgeBytes || vertices * width * sizeof(float) + edges * kEdgeBytes != body) {
@@ -260,14 +269,6 @@ Roadmap load_roadmap(const Scene& scene, const std::string& path) {
   std::uint64_t stored = 0;
   std::memcpy(&stored, data.data() + checked, sizeof(stored));
   if (stored != checksum.value()) throw damaged("", "checksum mismatch");
-  std::uint64_t fingerprint = 0;
-  std::memcpy(&fingerprint, data.data() + kMagicBytes, sizeof(fingerprint));
-  if (fingerprint != scene_fingerprint(scene)) {
-    throw InputError(file, "roadmap belongs to another scene, or to other settings of '" +
-                               scene.file +
-                               "' (robot, obstacles, bounds, weights, tolerance or resolution "
-                               "differ); build it again for this scene");
-  }
   Reader reader(data, path);
   char skip[kHeaderBytes];
   reader.take(skip, kHeaderBytes);

@@ -403,7 +403,9 @@ std::map<std::string, LinkElements> check_collisions(const tinyxml2::XMLDocument
 // A mimic joint follows multiplier * leader + offset; over the leader's whole range that
 // must stay within the follower's own limits (a continuous follower has none).
 void check_mimic_range(const Joint& follower, const Joint& leader, const SourceLocation& where) {
-  if (follower.type == JointType::kContinuous) return;
+  // Limits of a single point (lower == upper, often 0 0) are a placeholder some robots
+  // give mimic joints (Talos's grippers): the follower is then bounded by its leader alone.
+  if (follower.type == JointType::kContinuous || !(follower.upper > follower.lower)) return;
   const double a = follower.mimic_multiplier * leader.lower + follower.mimic_offset;
   const double b = follower.mimic_multiplier * leader.upper + follower.mimic_offset;
   const double low = std::min(a, b), high = std::max(a, b);

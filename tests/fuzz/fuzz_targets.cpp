@@ -69,6 +69,16 @@ std::string write(const std::string& name, const std::uint8_t* data, std::size_t
   std::abort();
 }
 
+// Every refusal is one line of a few hundred characters (input_error.h), however long or
+// strange the input it echoes.
+void check_message(const InputError& error) {
+  const std::string message = error.what();
+  if (message.find('\n') != std::string::npos || message.find('\x1b') != std::string::npos) {
+    finding("an input error's message holds a line break or a terminal escape");
+  }
+  if (message.size() > 1000) finding("an input error's message is longer than 1000 characters");
+}
+
 }  // namespace
 
 void scene_file(const std::uint8_t* data, std::size_t size) {
@@ -79,7 +89,8 @@ void scene_file(const std::uint8_t* data, std::size_t size) {
         static_cast<int>(scene.goal.size()) != scene.space.width()) {
       finding("a loaded scene's start or goal does not fit its configuration width");
     }
-  } catch (const InputError&) {
+  } catch (const InputError& e) {
+    check_message(e);
   }
 }
 
@@ -95,7 +106,8 @@ void urdf_file(const std::uint8_t* data, std::size_t size) {
         finding("a loaded URDF's links are not in topological order");
       }
     }
-  } catch (const InputError&) {
+  } catch (const InputError& e) {
+    check_message(e);
   }
 }
 
@@ -112,7 +124,8 @@ void srdf_file(const std::uint8_t* data, std::size_t size) {
         finding("an SRDF pair names a link out of range");
       }
     }
-  } catch (const InputError&) {
+  } catch (const InputError& e) {
+    check_message(e);
   }
 }
 

@@ -1,19 +1,29 @@
 #include "gplanner/planner/planning/roadmap.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 #include <stdexcept>
 
 #include "gplanner/planner/output/atomic_file.h"
+#include "gplanner/planner/scene/input_error.h"
+#include "gplanner/planner/scene/input_file.h"
 #include "gplanner/planner/scene/scene.h"
 
 namespace gplanner {
 namespace {
 
 constexpr char kMagic[] = "gplanner-roadmap 1\n";
+constexpr std::size_t kMagicBytes = sizeof(kMagic) - 1;
+// After the magic: the scene's fingerprint, the width, the vertex and edge counts.
+constexpr std::size_t kHeaderBytes = kMagicBytes + 8 + 4 + 8 + 8;
+constexpr std::size_t kEdgeBytes = 4 + 4 + 4 + 1;
+constexpr std::size_t kChecksumBytes = 8;
+constexpr char kTruncated[] = "roadmap file is damaged (truncated); build it again";
 
 // FNV-1a, 64 bit.
 class Hash {
@@ -62,8 +72,7 @@ class Reader {
     return x;
   }
   void take(void* out, std::size_t n) {
-    if (n > data_.size() - at_)
-      throw std::runtime_error(path_ + ": roadmap file is damaged (truncated); build it again");
+    if (n > data_.size() - at_) throw InputError({path_, 0, ""}, kTruncated);
     std::memcpy(out, data_.data() + at_, n);
     at_ += n;
   }
@@ -202,46 +211,83 @@ void save_roadmap(const Roadmap& roadmap, const Scene& scene, const std::string&
   });
 }
 
+namespace {
+
+// Why row q (shape: [space.width()]) is no configuration of the scene, or "": as
+// ConfigurationSpace::out_of_bounds, but a base position within the slack of float
+// rounding past a bound (a milestone on the bound) is within.
+std::string row_problem(const Scene& scene, const float* q) {
+  const ConfigurationSpace& space = scene.space;
+  std::vector<float> rest(q, q + space.width());
+  for (int k = 0; k < space.position_width(); ++k) {
+    const double slack = 1e-6 * std::max(1.0, space.base_max[k] - space.base_min[k]);
+    if (!(q[k] >= space.base_min[k] - slack && q[k] <= space.base_max[k] + slack)) {
+      return space.out_of_bounds(scene.robot, q);
+    }
+    rest[k] = static_cast<float>((space.base_min[k] + space.base_max[k]) / 2);  // judged
+  }
+  return space.out_of_bounds(scene.robot, rest.data());
+}
+
+}  // namespace
+
 Roadmap load_roadmap(const Scene& scene, const std::string& path) {
+  const SourceLocation file{path, 0, ""};
+  const std::uintmax_t size = check_input_file(path, kRoadmapFile, file);
+  auto damaged = [&](const std::string& key, const std::string& why) {
+    return InputError({path, 0, key}, "roadmap file is damaged (" + why + "); build it again");
+  };
+  // The header first: its counts must give the file's size before the file is read.
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open the roadmap file");
-  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::size_t magic = sizeof(kMagic) - 1;
-  if (data.size() < magic || data.compare(0, magic, kMagic) != 0)
-    throw std::runtime_error(path + ": not a gplanner roadmap file");
-  if (data.size() < magic + sizeof(std::uint64_t))
-    throw std::runtime_error(path + ": roadmap file is damaged (truncated); build it again");
-  const std::size_t body = data.size() - sizeof(std::uint64_t);
-  Hash checksum;
-  checksum.bytes(data.data(), body);
-  std::uint64_t stored = 0;
-  std::memcpy(&stored, data.data() + body, sizeof(stored));
-  Reader reader(data, path);
-  char skip[sizeof(kMagic)];
-  reader.take(skip, magic);
-  const std::uint64_t fingerprint = reader.get<std::uint64_t>();
-  if (stored != checksum.value())
-    throw std::runtime_error(path +
-                             ": roadmap file is damaged (checksum mismatch); build it again");
+  if (!in) throw InputError(file, "roadmap file cannot be opened; check its permissions");
+  std::string data(std::min<std::uintmax_t>(size, kHeaderBytes), '\0');
+  in.read(data.data(), static_cast<std::streamsize>(data.size()));
+  if (data.size() < kMagicBytes || data.compare(0, kMagicBytes, kMagic) != 0) {
+    throw InputError(file, "not a gplanner roadmap file; give a file written by --save-roadmap");
+  }
+  if (size < kHeaderBytes + kChecksumBytes) throw InputError(file, kTruncated);
+  std::int32_t width = 0;
+  std::uint64_t vertices = 0, edges = 0;
+  std::memcpy(&width, data.data() + kMagicBytes + 8, sizeof(width));
+  std::memcpy(&vertices, data.data() + kMagicBytes + 12, sizeof(vertices));
+  std::memcpy(&edges, data.data() + kMagicBytes + 20, sizeof(edges));
+  // Before the sizes: another scene may have another width.
+  std::uint64_t fingerprint = 0;
+  std::memcpy(&fingerprint, data.data() + kMagicBytes, sizeof(fingerprint));
   if (fingerprint != scene_fingerprint(scene)) {
-    throw std::runtime_error(path + ": roadmap belongs to another scene, or to other settings of " +
-                             scene.file +
-                             " (robot, obstacles, bounds, weights, tolerance or "
-                             "resolution differ); build it again for this scene");
+    throw InputError(file, "roadmap belongs to another scene, or to other settings of '" +
+                               scene.file +
+                               "' (robot, obstacles, bounds, weights, tolerance or resolution "
+                               "differ); build it again for this scene");
   }
-  const std::int32_t width = reader.get<std::int32_t>();
-  const std::uint64_t vertices = reader.get<std::uint64_t>();
-  const std::uint64_t edges = reader.get<std::uint64_t>();
-  const std::uint64_t edge_bytes = 4 + 4 + 4 + 1;
-  if (width != scene.space.width() || vertices > body / sizeof(float) ||
-      edges > body / edge_bytes ||
-      reader.at() + vertices * width * sizeof(float) + edges * edge_bytes != body) {
-    throw std::runtime_error(path + ": roadmap file is damaged (sizes disagree); build it again");
+  const std::uintmax_t body = size - kHeaderBytes - kChecksumBytes;
+  if (width != scene.space.width() || vertices > body / (sizeof(float) * std::max(width, 1)) ||
+      edges > body / kEdgeBytes || vertices * width * sizeof(float) + edges * kEdgeBytes != body) {
+    throw damaged("", "its header's width and counts do not give its size");
   }
+  if (vertices > std::numeric_limits<std::uint32_t>::max()) {
+    throw damaged("", "more milestones than edges can name");
+  }
+  data.resize(static_cast<std::size_t>(size));
+  in.read(data.data() + kHeaderBytes, static_cast<std::streamsize>(size - kHeaderBytes));
+  if (static_cast<std::uintmax_t>(in.gcount()) != size - kHeaderBytes) {
+    throw InputError(file, kTruncated);
+  }
+  const std::size_t checked = data.size() - kChecksumBytes;
+  Hash checksum;
+  checksum.bytes(data.data(), checked);
+  std::uint64_t stored = 0;
+  std::memcpy(&stored, data.data() + checked, sizeof(stored));
+  if (stored != checksum.value()) throw damaged("", "checksum mismatch");
+  Reader reader(data, path);
+  char skip[kHeaderBytes];
+  reader.take(skip, kHeaderBytes);
   Roadmap roadmap(width);
   std::vector<float> q(width);
   for (std::uint64_t v = 0; v < vertices; ++v) {
     reader.take(q.data(), sizeof(float) * width);
+    const std::string problem = row_problem(scene, q.data());
+    if (!problem.empty()) throw damaged("milestone " + std::to_string(v), problem);
     roadmap.add_vertex(q.data());
   }
   for (std::uint64_t e = 0; e < edges; ++e) {
@@ -249,8 +295,17 @@ Roadmap load_roadmap(const Scene& scene, const std::string& path) {
     const auto b = reader.get<std::uint32_t>();
     const auto length = reader.get<float>();
     const auto state = reader.get<std::uint8_t>();
-    if (a >= vertices || b >= vertices || a >= b || state > 2 || roadmap.find_edge(a, b) >= 0)
-      throw std::runtime_error(path + ": roadmap file is damaged (bad edge); build it again");
+    const std::string key = "edge " + std::to_string(e);
+    if (a >= vertices || b >= vertices || a >= b) {
+      throw damaged(key, "it joins milestones " + std::to_string(a) + " and " + std::to_string(b));
+    }
+    if (!std::isfinite(length) || length < 0) {
+      std::ostringstream problem;
+      problem << "its length is " << length << ", not a finite distance of 0 or more";
+      throw damaged(key, problem.str());
+    }
+    if (state > 2) throw damaged(key, "its state " + std::to_string(state) + " is unknown");
+    if (roadmap.find_edge(a, b) >= 0) throw damaged(key, "it joins two milestones twice");
     roadmap.add_edge(a, b, length, static_cast<EdgeState>(state));
   }
   return roadmap;

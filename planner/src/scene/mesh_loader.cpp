@@ -15,6 +15,10 @@
 #include <iterator>
 #include <sstream>
 
+#include "gplanner/planner/scene/input_file.h"
+#include "guarded_io_system.h"
+#include "mesh_file_check.h"
+
 namespace gplanner {
 namespace {
 
@@ -135,18 +139,18 @@ void validate_mesh(TriangleMesh* mesh, const SourceLocation& where, const std::s
 }
 
 TriangleMesh load_mesh(const std::string& path, const Eigen::Vector3d& scale,
-                       const SourceLocation& referenced_from, std::vector<std::string>* notices) {
+                       const SourceLocation& referenced_from, std::vector<std::string>* notices,
+                       std::vector<std::string>* files_read) {
   const std::string what = "mesh '" + path + "'";
-  if (!std::filesystem::is_regular_file(path)) {
-    throw InputError(referenced_from, what + " does not exist; fix the path");
-  }
-  if (!std::ifstream(path).good()) {
-    throw InputError(referenced_from, what + " cannot be read; check its permissions");
-  }
+  const std::uintmax_t size = check_input_file(path, kMeshFile, referenced_from);
   if (!scale.allFinite() || (scale.array() == 0).any()) {
     throw InputError(referenced_from, "mesh scale must be finite and non-zero on every axis");
   }
+  check_mesh_file(path, size, referenced_from, what);
   Assimp::Importer importer;
+  // assimp opens the mesh and whatever it names through this (the importer owns it).
+  auto* const io_system = new GuardedIOSystem;
+  importer.SetIOHandler(io_system);
   // COLLADA files say which axis is up, and assimp would turn them to y up; ROS and
   // hpp-fcl read them as written, z up, and so do we (with a notice for other axes).
   // Units (<unit meter=...>) stay applied, as RViz and Gazebo apply them.
@@ -156,6 +160,14 @@ TriangleMesh load_mesh(const std::string& path, const Eigen::Vector3d& scale,
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(
       path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  if (files_read) {
+    files_read->insert(files_read->end(), io_system->files_read().begin(),
+                       io_system->files_read().end());
+  }
+  if (!io_system->refusal().empty()) {
+    throw InputError(referenced_from, what + " names a file that cannot be read: " +
+                                          io_system->refusal());
+  }
   if (scene == nullptr || scene->mRootNode == nullptr) {
     const std::string error = importer.GetErrorString();
     // SortByPType removes points and lines; a file holding nothing else is left empty.
@@ -168,9 +180,23 @@ TriangleMesh load_mesh(const std::string& path, const Eigen::Vector3d& scale,
                                           "; give a mesh file (STL, OBJ, COLLADA, ...) with at "
                                           "least one triangle");
   }
+  std::size_t triangles = 0;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) triangles += scene->mMeshes[m]->mNumFaces;
+  if (triangles > kMaxMeshTriangles) {
+    throw InputError(referenced_from, what + " has " + std::to_string(triangles) +
+                                          " triangles, more than the " +
+                                          std::to_string(kMaxMeshTriangles) +
+                                          " a mesh may have; simplify it");
+  }
   TriangleMesh mesh;
   collect_triangles(*scene, *scene->mRootNode, Eigen::Matrix4d::Identity(), &mesh, referenced_from,
                     what);
+  if (mesh.triangles.size() > kMaxMeshTriangles) {
+    throw InputError(referenced_from, what + " places " + std::to_string(mesh.triangles.size()) +
+                                          " triangles through its nodes, more than the " +
+                                          std::to_string(kMaxMeshTriangles) +
+                                          " a mesh may have; simplify it");
+  }
   validate_mesh(&mesh, referenced_from, what);
   for (Eigen::Vector3d& p : mesh.vertices) p = p.cwiseProduct(scale);
   if (scale.prod() < 0) {

@@ -1,9 +1,10 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <iomanip>
 #include <set>
@@ -11,11 +12,14 @@
 #include <tuple>
 
 #include "gplanner/planner/planning/local_planner.h"
+#include "gplanner/planner/scene/input_file.h"
+#include "gplanner/planner/scene/input_limits.h"
 #include "gplanner/planner/scene/mesh_components.h"
 #include "gplanner/planner/scene/mesh_loader.h"
 #include "gplanner/planner/scene/scene.h"
 #include "gplanner/planner/scene/scene_collision_model.h"
 #include "gplanner/planner/scene/urdf_loader.h"
+#include "yaml_structure.h"
 
 namespace gplanner {
 namespace {
@@ -99,24 +103,36 @@ class YamlReader {
 
   Eigen::Quaterniond quaternion(const YAML::Node& node, const std::string& key) const {
     const std::vector<double> v = numbers(node, key, 4);
-    const Eigen::Quaterniond q(v[0], v[1], v[2], v[3]);
-    if (q.norm() < 1e-9) {
+    // Divided by its largest part first, so that huge parts do not overflow the norm.
+    double largest = 0;
+    for (const double part : v) largest = std::max(largest, std::abs(part));
+    if (largest < 1e-9) {
       fail(node, key, "zero-length quaternion; give [w, x, y, z] with w = 1 for no rotation");
     }
-    return q.normalized();
+    return Eigen::Quaterniond(v[0] / largest, v[1] / largest, v[2] / largest, v[3] / largest)
+        .normalized();
   }
 
-  // An existing file named relative to the scene file.
-  std::string path(const YAML::Node& node, const std::string& key) const {
-    const std::string name = text(node, key);
-    const fs::path resolved = (fs::path(file_).parent_path() / name).lexically_normal();
-    if (!fs::exists(resolved)) {
+  // A file named relative to the scene file: a readable regular file of `kind`.
+  std::string path(const YAML::Node& node, const std::string& key,
+                   const InputFileKind& kind) const {
+    const std::string resolved = resolve(node, key);
+    check_input_file(resolved, kind, at(node, key));
+    return resolved;
+  }
+
+  // A folder named relative to the scene file.
+  std::string folder(const YAML::Node& node, const std::string& key) const {
+    const std::string resolved = resolve(node, key);
+    std::error_code error;
+    const fs::file_status status = fs::status(resolved, error);
+    if (!fs::is_directory(status)) {
+      const std::string problem = !fs::exists(status) ? "does not exist" : "is not a folder";
       fail(node, key,
-           "'" + resolved.string() +
-               "' does not exist; fix the path (relative to "
-               "the scene file)");
+           "'" + resolved + "' " + problem + (error ? " (" + error.message() + ")" : "") +
+               "; fix the path (relative to the scene file)");
     }
-    return resolved.string();
+    return resolved;
   }
 
   static std::string join(const std::string& key, const std::string& name) {
@@ -124,6 +140,10 @@ class YamlReader {
   }
 
  private:
+  std::string resolve(const YAML::Node& node, const std::string& key) const {
+    return (fs::path(file_).parent_path() / text(node, key)).lexically_normal().string();
+  }
+
   static std::string kind(const YAML::Node& node) {
     switch (node.Type()) {
       case YAML::NodeType::Null:
@@ -210,10 +230,10 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
     if (node["base"] && in.text(node["base"], key + ".base") != "floating") {
       in.fail(node["base"], key + ".base", "a mesh robot is a rigid body with a floating base");
     }
-    const std::string mesh_path = in.path(node["mesh"], key + ".mesh");
-    scene->input_files.push_back(mesh_path);
+    const std::string mesh_path = in.path(node["mesh"], key + ".mesh", kMeshFile);
     TriangleMesh mesh = load_mesh(mesh_path, Eigen::Vector3d::Ones(),
-                                  in.at(node["mesh"], key + ".mesh"), &scene->notices);
+                                  in.at(node["mesh"], key + ".mesh"), &scene->notices,
+                                  &scene->input_files);
     scene->robot =
         make_rigid_robot(fs::path(mesh_path).stem().string(), std::move(mesh), mesh_path);
     space.base = BaseType::kFloating;
@@ -226,10 +246,10 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
     if (!map.IsMap()) in.fail(map, key + ".packages", "expected a map of package name: folder");
     for (const auto& entry : map) {
       const std::string name = entry.first.as<std::string>();
-      packages[name] = in.path(entry.second, key + ".packages." + name);
+      packages[name] = in.folder(entry.second, key + ".packages." + name);
     }
   }
-  const std::string urdf_path = in.path(node["urdf"], key + ".urdf");
+  const std::string urdf_path = in.path(node["urdf"], key + ".urdf", kUrdfFile);
   scene->input_files.push_back(urdf_path);
   scene->robot =
       load_urdf(urdf_path, packages, in.at(node["urdf"], key + ".urdf"), &scene->notices);
@@ -237,7 +257,7 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
   scene->input_files.insert(scene->input_files.end(), robot.mesh_files.begin(),
                             robot.mesh_files.end());
   if (node["srdf"]) {
-    const std::string srdf_path = in.path(node["srdf"], key + ".srdf");
+    const std::string srdf_path = in.path(node["srdf"], key + ".srdf", kSrdfFile);
     scene->input_files.push_back(srdf_path);
     apply_srdf(&robot, srdf_path, in.at(node["srdf"], key + ".srdf"), &scene->notices);
   }
@@ -436,10 +456,25 @@ std::vector<double> read_configuration(const YamlReader& in, const YAML::Node& n
   return q;
 }
 
+// A mesh file loaded at one scale, with its components: loaded once however often the
+// scene names it.
+struct LoadedMesh {
+  TriangleMesh mesh;
+  MeshComponents components;
+};
+using MeshCache = std::map<std::pair<std::string, std::array<double, 3>>, LoadedMesh>;
+
 void read_obstacles(const YamlReader& in, const YAML::Node& node, Scene* scene) {
   if (!node) return;
   if (!node.IsSequence()) in.fail(node, "obstacles", "expected a list of obstacles");
+  if (node.size() > kMaxObstacles) {
+    in.fail(node, "obstacles",
+            "lists " + std::to_string(node.size()) + " obstacles, more than the " +
+                std::to_string(kMaxObstacles) + " a scene may have; merge them into meshes");
+  }
   std::set<std::string> noticed;  // files whose open components a notice named
+  MeshCache meshes;
+  std::size_t triangles = 0;
   for (std::size_t i = 0; i < node.size(); ++i) {
     const YAML::Node item = node[i];
     const std::string key = "obstacles[" + std::to_string(i) + "]";
@@ -463,19 +498,28 @@ void read_obstacles(const YamlReader& in, const YAML::Node& node, Scene* scene) 
     obstacle.defined = in.at(item, key);
     TriangleMesh mesh;
     if (item["mesh"]) {
-      const std::string path = in.path(item["mesh"], key + ".mesh");
-      scene->input_files.push_back(path);
+      const std::string path = in.path(item["mesh"], key + ".mesh", kMeshFile);
       const Eigen::Vector3d scale =
           item["scale"] ? in.vector3(item["scale"], key + ".scale") : Eigen::Vector3d::Ones();
       if ((scale.array() == 0).any())
         in.fail(item["scale"], key + ".scale", "a zero scale flattens the mesh");
-      mesh = load_mesh(path, scale, in.at(item["mesh"], key + ".mesh"), &scene->notices);
+      const MeshCache::key_type cache_key{path, {scale.x(), scale.y(), scale.z()}};
+      auto cached = meshes.find(cache_key);
+      if (cached == meshes.end()) {
+        LoadedMesh fresh;
+        fresh.mesh = load_mesh(path, scale, in.at(item["mesh"], key + ".mesh"), &scene->notices,
+                               &scene->input_files);
+        fresh.components = mesh_components(fresh.mesh);
+        cached = meshes.emplace(cache_key, std::move(fresh)).first;
+      }
+      const LoadedMesh& loaded = cached->second;
+      mesh = loaded.mesh;
       obstacle.name = fs::path(path).stem().string();
       obstacle.file = path;
       if (solid_key == 0) {
         obstacle.solid.assign(mesh.triangle_count(), 0);
       } else {
-        const MeshComponents components = mesh_components(mesh);
+        const MeshComponents& components = loaded.components;
         if (components.open_count > 0 && solid_key == 1) {
           in.fail(item["solid"], key + ".solid",
                   "mesh '" + path + "' is not closed: " + describe_open_components(components) +
@@ -521,6 +565,13 @@ void read_obstacles(const YamlReader& in, const YAML::Node& node, Scene* scene) 
         obstacle.dimensions = Eigen::Vector3d(radius, length, 0);
       }
       obstacle.solid.assign(mesh.triangle_count(), solid_key == 0 ? 0 : 1);
+    }
+    triangles += mesh.triangle_count();
+    if (triangles > kMaxSceneTriangles) {
+      in.fail(item, key,
+              "brings the obstacles' triangles to " + std::to_string(triangles) +
+                  ", more than the " + std::to_string(kMaxSceneTriangles) +
+                  " a scene may have; simplify the meshes or place fewer");
     }
     if (item["name"]) obstacle.name = in.text(item["name"], key + ".name");
     const Eigen::Isometry3d X_WO =
@@ -627,14 +678,11 @@ Eigen::AlignedBox3d Scene::bounds_S() const {
 }
 
 Scene load_scene(const std::string& path) {
-  if (!fs::is_regular_file(path)) {
-    throw InputError({path, 0, ""}, "scene file does not exist; fix the path");
-  }
-  std::ifstream stream(path);
-  if (!stream) throw InputError({path, 0, ""}, "scene file cannot be read; check its permissions");
+  const std::string text = read_input_file(path, kSceneFile, {path, 0, ""});
+  check_yaml_structure(text, path, "planner");
   YAML::Node root;
   try {
-    root = YAML::Load(stream);
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw InputError({path, e.mark.line + 1, "yaml"}, "malformed YAML: " + e.msg);
   }

@@ -14,6 +14,8 @@
 #include <set>
 #include <sstream>
 
+#include "gplanner/planner/scene/input_file.h"
+#include "gplanner/planner/scene/input_limits.h"
 #include "gplanner/planner/scene/mesh_components.h"
 #include "gplanner/planner/scene/mesh_loader.h"
 
@@ -33,18 +35,6 @@ class CapturingOutputHandler : public console_bridge::OutputHandler {
 };
 
 std::mutex urdf_parser_mutex;
-
-std::string read_text_file(const std::string& path, const SourceLocation& referenced_from,
-                           const std::string& what) {
-  if (!fs::is_regular_file(path)) {
-    throw InputError(referenced_from, what + " '" + path + "' does not exist; fix the path");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(referenced_from, what + " '" + path + "' cannot be read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // Line numbers of named elements (<link name=...>, <joint name=...>), for messages.
 std::map<std::string, int> element_lines(const tinyxml2::XMLDocument& doc, const char* tag) {
@@ -102,9 +92,8 @@ TriangleMesh collision_geometry(const urdf::Geometry& geometry, const std::strin
     case urdf::Geometry::MESH: {
       const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
       const std::string path = resolve_resource(mesh.filename, urdf_folder, packages, where);
-      mesh_files->push_back(path);
       return load_mesh(path, Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z), where,
-                       notices);
+                       notices, mesh_files);
     }
   }
   throw InputError(where, "unsupported collision geometry");
@@ -159,6 +148,12 @@ void check_tree(const tinyxml2::XMLDocument& doc, const std::string& path) {
     }
   }
   if (links.empty()) throw InputError({path, robot->GetLineNum(), "robot"}, "no links; add one");
+  if (links.size() > kMaxRobotLinks) {
+    throw InputError({path, robot->GetLineNum(), "robot"},
+                     "has " + std::to_string(links.size()) + " links, more than the " +
+                         std::to_string(kMaxRobotLinks) +
+                         " a robot may have; merge fixed links or plan a smaller model");
+  }
   std::map<std::string, std::string> parent_of;  // child link -> parent link
   for (const tinyxml2::XMLElement* joint = robot->FirstChildElement("joint"); joint;
        joint = joint->NextSiblingElement("joint")) {
@@ -197,16 +192,24 @@ void check_tree(const tinyxml2::XMLDocument& doc, const std::string& path) {
         "several root links ('" + roots[0] + "', '" + roots[1] + "'); join every link to one tree");
   }
   // With one parent per link, a link whose ancestors never reach the root lies on a
-  // cycle.
+  // cycle. Each link is walked up once: a walk stops at a link known to reach the root.
+  enum Walk : char { kUnknown, kOnThisWalk, kReachesRoot };
+  std::map<std::string, Walk> walked;
   for (const auto& [name, line] : links) {
+    std::vector<std::string> walk;
     std::string at = name;
-    for (std::size_t steps = 0; parent_of.count(at); ++steps) {
-      if (steps > links.size()) {
-        throw InputError({path, line, "link '" + name + "'"},
-                         "lies on a cycle of joints; a URDF is a tree");
-      }
-      at = parent_of.at(at);
+    while (walked[at] == kUnknown) {
+      walked[at] = kOnThisWalk;
+      walk.push_back(at);
+      const auto parent = parent_of.find(at);
+      if (parent == parent_of.end()) break;  // the root
+      at = parent->second;
     }
+    if (walked[at] == kOnThisWalk && parent_of.count(at)) {
+      throw InputError({path, links.at(at), "link '" + at + "'"},
+                       "lies on a cycle of joints; a URDF is a tree");
+    }
+    for (const std::string& link : walk) walked[link] = kReachesRoot;
   }
 }
 
@@ -398,11 +401,34 @@ std::map<std::string, LinkElements> check_collisions(const tinyxml2::XMLDocument
                        " and so drops every collision of the link; fix it");
 }
 
+// A mimic joint follows multiplier * leader + offset; over the leader's whole range that
+// must stay within the follower's own limits (a continuous follower has none).
+void check_mimic_range(const Joint& follower, const Joint& leader, const SourceLocation& where) {
+  // Limits of a single point (lower == upper, often 0 0) are a placeholder some robots
+  // give mimic joints (Talos's grippers): the follower is then bounded by its leader alone.
+  if (follower.type == JointType::kContinuous || !(follower.upper > follower.lower)) return;
+  const double a = follower.mimic_multiplier * leader.lower + follower.mimic_offset;
+  const double b = follower.mimic_multiplier * leader.upper + follower.mimic_offset;
+  const double low = std::min(a, b), high = std::max(a, b);
+  const double slack = 1e-9 * std::max(1.0, follower.upper - follower.lower);
+  if (std::isfinite(low) && std::isfinite(high) && low >= follower.lower - slack &&
+      high <= follower.upper + slack) {
+    return;
+  }
+  std::ostringstream problem;
+  problem << "multiplier " << follower.mimic_multiplier << " and offset " << follower.mimic_offset
+          << " drive it over [" << low << ", " << high << "] as '" << leader.name
+          << "' moves over [" << leader.lower << ", " << leader.upper
+          << "], outside its own limits [" << follower.lower << ", " << follower.upper
+          << "]; change the multiplier or offset, or the limits of either joint";
+  throw InputError(where, problem.str());
+}
+
 }  // namespace
 
 RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
                      const SourceLocation& referenced_from, std::vector<std::string>* notices) {
-  const std::string xml = read_text_file(urdf_path, referenced_from, "URDF");
+  const std::string xml = read_input_file(urdf_path, kUrdfFile, referenced_from);
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
     throw InputError({urdf_path, doc.ErrorLineNum(), "xml"},
@@ -532,6 +558,7 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
                        "mimics a joint that itself mimics another; chain them to the "
                        "master instead");
     }
+    check_mimic_range(joint, robot.joints[joint.mimic_joint], where);
   }
   if (robot.triangle_count() == 0) {
     const tinyxml2::XMLElement* root = doc.FirstChildElement("robot");
@@ -545,7 +572,7 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
 
 int apply_srdf(RobotModel* robot, const std::string& srdf_path,
                const SourceLocation& referenced_from, std::vector<std::string>* notices) {
-  const std::string xml = read_text_file(srdf_path, referenced_from, "SRDF");
+  const std::string xml = read_input_file(srdf_path, kSrdfFile, referenced_from);
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
     throw InputError({srdf_path, doc.ErrorLineNum(), "xml"},

@@ -5,10 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <fstream>
+#include <limits>
 #include <iterator>
 #include <random>
 
+#include "gplanner/planner/scene/input_error.h"
 #include "gplanner/planner/scene/scene.h"
 #include "planner/scene_test_support.h"
 #include "test_support.h"
@@ -130,7 +134,71 @@ TEST(Roadmap, DamagedFilesAreRefusedNamingTheFile) {
 
   const std::string text = scratch.write("notes.txt", "hello\n");
   EXPECT_NE(load_error(scene, text).find("not a gplanner roadmap"), std::string::npos);
-  EXPECT_NE(load_error(scene, scratch.path() + "/missing").find("cannot open"), std::string::npos);
+  EXPECT_NE(load_error(scene, scratch.path() + "/missing").find("does not exist"),
+            std::string::npos);
+}
+
+// `bytes` (a roadmap file's) with its checksum made right again, as a careful forger
+// would.
+std::string with_checksum(std::string bytes) {
+  std::uint64_t hash = 1469598103934665603ull;  // FNV-1a, 64 bit, as roadmap.cpp
+  for (std::size_t i = 0; i < bytes.size() - 8; ++i) {
+    hash ^= static_cast<unsigned char>(bytes[i]);
+    hash *= 1099511628211ull;
+  }
+  std::memcpy(bytes.data() + bytes.size() - 8, &hash, 8);
+  return bytes;
+}
+
+constexpr std::size_t kHeaderBytes = 19 + 8 + 4 + 8 + 8;  // magic, fingerprint, width, counts
+
+TEST(Roadmap, ContentWithAValidChecksumIsStillChecked) {
+  const Scene scene = load("piano.yaml");
+  testing::ScratchFolder scratch;
+  const std::string path = scratch.path() + "/piano.roadmap";
+  const std::size_t n = 20;
+  const Roadmap roadmap = random_roadmap(scene, n, 5);
+  save_roadmap(roadmap, scene, path);
+  const std::string good = read_bytes(path);
+  ASSERT_EQ(with_checksum(good), good);
+  const std::size_t width = scene.space.width();
+  const std::size_t first_edge = kHeaderBytes + n * width * sizeof(float);
+  auto refused = [&](const std::string& bytes) {
+    const std::string forged = scratch.path() + "/forged.roadmap";
+    write_bytes(forged, with_checksum(bytes));
+    try {
+      load_roadmap(scene, forged);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  for (const float length : {std::nanf(""), -1.0f, std::numeric_limits<float>::infinity()}) {
+    std::string bytes = good;
+    std::memcpy(bytes.data() + first_edge + 8, &length, sizeof(float));
+    const std::string message = refused(bytes);
+    EXPECT_NE(message.find("edge 0: roadmap file is damaged (its length is"), std::string::npos)
+        << message;
+  }
+  for (const float value : {std::nanf(""), 1e30f}) {
+    std::string bytes = good;
+    std::memcpy(bytes.data() + kHeaderBytes + width * sizeof(float), &value, sizeof(float));
+    const std::string message = refused(bytes);
+    EXPECT_NE(message.find("milestone 1: roadmap file is damaged"), std::string::npos) << message;
+  }
+  // Counts that claim more than the file holds: refused before it is read whole.
+  std::string bytes = good;
+  const std::uint64_t huge = 4000000000ull;
+  std::memcpy(bytes.data() + 19 + 8 + 4, &huge, sizeof(huge));
+  EXPECT_NE(refused(bytes).find("do not give its size"), std::string::npos) << refused(bytes);
+}
+
+TEST(Roadmap, FileKindsAreNamed) {
+  const Scene scene = load("piano.yaml");
+  testing::ScratchFolder scratch;
+  EXPECT_THROW(load_roadmap(scene, scratch.path()), InputError);
+  EXPECT_NE(load_error(scene, scratch.path()).find("is a folder"), std::string::npos);
+  EXPECT_NE(load_error(scene, "/dev/null").find("is a device"), std::string::npos);
 }
 
 TEST(Roadmap, FailedSaveKeepsTheOldFile) {

@@ -4,11 +4,16 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include "gplanner/planner/scene/input_error.h"
 #include "gplanner/planner/scene/scene.h"
 #include "test_support.h"
 
@@ -310,6 +315,88 @@ TEST(MeshLoader, PrimitivesContainTheExactShape) {
   const TriangleMesh cylinder = make_cylinder(0.5, 2.0);
   EXPECT_GT(signed_volume(cylinder), kPi * 0.25 * 2.0);
   EXPECT_GE(min_face_distance(cylinder, Eigen::Vector3d(1, 1, 0)), 0.5 - 1e-12);
+}
+
+// --- hostile mesh files (issue 19) ---------------------------------------------------------
+
+std::string mesh_error(const std::string& path) {
+  try {
+    load_mesh(path, Eigen::Vector3d::Ones(), kWhere);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "loaded";
+}
+
+TEST(MeshLoader, FilesTheMeshNamesAreOpenedOnlyWhenRegular) {
+  testing::ScratchFolder scratch;
+  const std::string obj = std::string("mtllib parts.mtl\nusemtl red\n") + testing::kCubeObj;
+  const std::string mesh = scratch.write("part.obj", obj);
+  const std::string mtl = scratch.write("parts.mtl", "newmtl red\nKd 1 0 0\n");
+  std::vector<std::string> files_read;
+  EXPECT_EQ(load_mesh(mesh, Eigen::Vector3d::Ones(), kWhere, nullptr, &files_read)
+                .triangle_count(),
+            12u);
+  EXPECT_NE(std::find(files_read.begin(), files_read.end(), mesh), files_read.end());
+  EXPECT_EQ(files_read.size(), 2u);
+  EXPECT_NE(files_read.back().find("parts.mtl"), std::string::npos);
+  // The material file a FIFO: refused at once (assimp would wait for a writer forever).
+  std::remove(mtl.c_str());
+  ASSERT_EQ(mkfifo(mtl.c_str(), 0600), 0);
+  const std::string message = mesh_error(mesh);
+  EXPECT_NE(message.find("names a file that cannot be read"), std::string::npos) << message;
+  EXPECT_NE(message.find("is a FIFO"), std::string::npos) << message;
+  // Missing, as many downloaded OBJs' are: loaded without materials.
+  std::remove(mtl.c_str());
+  EXPECT_EQ(mesh_error(mesh), "loaded");
+}
+
+TEST(MeshLoader, PlyHeaderClaimingMoreThanTheFileHoldsIsRefusedBeforeReading) {
+  testing::ScratchFolder scratch;
+  const std::string header =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\nproperty list uchar int "
+      "vertex_indices\nend_header\n";
+  const std::string message = mesh_error(scratch.write("huge.ply", header + std::string(64, '\0')));
+  EXPECT_NE(message.find("claims 4000000000 vertex elements"), std::string::npos) << message;
+  const std::string ascii =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_EQ(mesh_error(scratch.write("small.ply", ascii)), "loaded");
+}
+
+// A COLLADA file whose nodes each hold an <instance_node> of the other.
+std::string collada_with_nodes(const std::string& library_nodes) {
+  return R"(<?xml version="1.0"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><up_axis>Z_UP</up_axis></asset>
+  <library_nodes>)" +
+         library_nodes + R"(</library_nodes>
+  <library_visual_scenes><visual_scene id="s"><node id="root"><instance_node url="#a"/></node>
+  </visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>
+)";
+}
+
+TEST(MeshLoader, ColladaInstanceCyclesAndExplosionsAreRefused) {
+  testing::ScratchFolder scratch;
+  const std::string cycle = mesh_error(scratch.write(
+      "cycle.dae", collada_with_nodes(R"(<node id="a"><instance_node url="#b"/></node>
+      <node id="b"><instance_node url="#a"/></node>)")));
+  EXPECT_NE(cycle.find("instances itself through <instance_node> (a cycle)"), std::string::npos)
+      << cycle;
+  // Twenty levels each instancing the next twice: a million nodes from 2 KB.
+  std::string levels;
+  for (int i = 0; i < 20; ++i) {
+    const std::string next = "#n" + std::to_string(i + 1);
+    levels += "<node id=\"n" + std::to_string(i) + "\"><instance_node url=\"" + next +
+              "\"/><instance_node url=\"" + next + "\"/></node>\n";
+  }
+  levels += "<node id=\"n20\"/><node id=\"a\"><instance_node url=\"#n0\"/></node>";
+  const std::string explosion = mesh_error(scratch.write("explosion.dae", collada_with_nodes(levels)));
+  EXPECT_NE(explosion.find("to more than 100000 nodes"), std::string::npos) << explosion;
 }
 
 }  // namespace

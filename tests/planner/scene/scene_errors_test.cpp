@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <sstream>
@@ -785,6 +786,128 @@ TEST_F(SceneErrors, GoalInSelfCollision) {
   const Scene relaxed = load_scene(write("scene.yaml", arm.text()));
   FclChecker relaxed_checker(relaxed, 1);
   EXPECT_NO_THROW(check_start_and_goal(relaxed, &relaxed_checker));
+}
+
+// --- YAML structure (issue 19) -----------------------------------------------------------
+
+TEST_F(SceneErrors, DuplicateKeyNamesBothLines) {
+  MeshScene s;
+  s.tail = "planner:\n  seed: 3\n  seed: 4\n";
+  EXPECT_TRUE(SceneFailsAt(s.text(), "seed: 4", "planner.seed", {"given twice", "keep the one"}));
+  MeshScene top;
+  top.tail = "name: other\n";
+  EXPECT_TRUE(SceneFailsAt(top.text(), "name: other", "name", {"given twice in one map (lines 1 and"}));
+  MeshScene nested;
+  nested.start =
+      "start:\n  base:\n    xyz: [-1, 0, 0]\n    xyz: [1, 0, 0]\n    quat_wxyz: [1, 0, 0, 0]\n";
+  EXPECT_TRUE(SceneFailsAt(nested.text(), "    xyz: [1", "start.base.xyz", {"given twice"}));
+}
+
+TEST_F(SceneErrors, SecondDocumentIsRefused) {
+  MeshScene s;
+  s.tail = "---\nname: second\n";
+  const std::string text = s.text();
+  const std::string scene = write("scene.yaml", text);
+  EXPECT_TRUE(FailsWith([&] { load_scene(scene); },
+                        {scene, kAnyLine, "", {"more than one YAML document"}}));
+}
+
+TEST_F(SceneErrors, AnchorsAndAliasesInPlannerSettingsAreRefused) {
+  MeshScene s;
+  s.tail = "planner:\n  roadmap: &r {milestones: 10}\n  shortcut: *r\n";
+  EXPECT_TRUE(SceneFailsAt(s.text(), "roadmap: &r", "planner.roadmap", {"not allowed"}));
+  // 1 KB of aliases to empty maps: refused at once, not walked 10^9 times.
+  std::string bomb = "planner:\n  a0: &a0 {}\n";
+  for (int i = 1; i < 30; ++i) {
+    bomb += "  a" + std::to_string(i) + ": &a" + std::to_string(i) + " [*a" +
+            std::to_string(i - 1) + ", *a" + std::to_string(i - 1) + "]\n";
+  }
+  MeshScene b;
+  b.tail = bomb;
+  EXPECT_TRUE(SceneFailsAt(b.text(), "a0: &a0", "planner.a0", {"not allowed"}));
+}
+
+TEST_F(SceneErrors, AliasesThatExpandTooFarAreRefused) {
+  // A billion laughs outside the settings: each level doubles the one before.
+  MeshScene s;
+  s.tail = "laughs:\n  - &l0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int i = 1; i < 12; ++i) {
+    s.tail += "  - &l" + std::to_string(i) + " [";
+    for (int k = 0; k < 10; ++k) s.tail += std::string(k ? ", " : "") + "*l" + std::to_string(i - 1);
+    s.tail += "]\n";
+  }
+  const std::string scene = write("scene.yaml", s.text());
+  EXPECT_TRUE(FailsWith([&] { load_scene(scene); },
+                        {scene, kAnyLine, "laughs[5][7]",
+                         {"expand the file to more than 1000000 nodes"}}));
+}
+
+TEST_F(SceneErrors, AliasedObstaclesLoad) {
+  MeshScene s;
+  s.obstacles = "obstacles:\n  - &wall {mesh: box.obj, pose: {xyz: [0, 0, 0]}}\n";
+  for (int i = 0; i < 200; ++i) s.obstacles += "  - *wall\n";
+  const Scene scene = load_scene(write("scene.yaml", s.text()));
+  EXPECT_EQ(scene.obstacles.size(), 201u);
+  EXPECT_EQ(scene.obstacles[200].mesh_S.triangle_count(), 12u);
+}
+
+TEST_F(SceneErrors, TabIndentationIsNamed) {
+  MeshScene s;
+  s.robot = "robot:\n\tmesh: box.obj\n";
+  EXPECT_TRUE(SceneFailsAt(s.text(), "\tmesh", "yaml", {"tabs cannot indent YAML; use spaces"}));
+}
+
+TEST_F(SceneErrors, NestingBeyondTheDepthGuardIsNamed) {
+  MeshScene s;
+  s.tail = "description: " + std::string(3000, '[') + std::string(3000, ']') + "\n";
+  const std::string scene = write("scene.yaml", s.text());
+  EXPECT_TRUE(FailsWith([&] { load_scene(scene); },
+                        {scene, kAnyLine, "yaml", {"nested more than", "remove the extra nesting"}}));
+}
+
+TEST_F(SceneErrors, HugeScalarIsEchoedAsAnExcerpt) {
+  MeshScene s;
+  s.tail = "planner:\n  seed: " + std::string(4 * 1024 * 1024, '9') + "x\n";
+  const std::string scene = write("scene.yaml", s.text());
+  try {
+    load_scene(scene);
+    FAIL() << "loaded";
+  } catch (const InputError& e) {
+    EXPECT_LT(std::string(e.what()).size(), scene.size() + 300) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bytes)"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(SceneErrors, QuaternionWithHugePartsIsNormalisedNotOverflowed) {
+  MeshScene s;
+  s.start = "start:\n  base: {xyz: [-1, 0, 0], quat_wxyz: [1e308, 1e308, 0, 0]}\n";
+  const Scene scene = load_scene(write("scene.yaml", s.text()));
+  EXPECT_NEAR(scene.start[3], std::sqrt(0.5), 1e-6);
+  EXPECT_NEAR(scene.start[4], std::sqrt(0.5), 1e-6);
+}
+
+TEST_F(SceneErrors, TooManyObstaclesAreRefusedAtOnce) {
+  MeshScene s;
+  s.obstacles = "obstacles:\n";
+  for (int i = 0; i <= 10000; ++i) s.obstacles += "- {sphere: 0.1}\n";
+  EXPECT_TRUE(SceneFailsAt(s.text(), "- {sphere", "obstacles",
+                           {"10001 obstacles, more than the 10000"}));
+}
+
+TEST_F(SceneErrors, MeshThatIsNoRegularFileIsNamedForWhatItIs) {
+  fs::create_directories(path("folder.obj"));
+  ASSERT_EQ(mkfifo(path("fifo.obj").c_str(), 0600), 0);
+  MeshScene s;
+  s.obstacles = "obstacles:\n  - mesh: folder.obj\n";
+  EXPECT_TRUE(SceneFailsAt(s.text(), "folder.obj", "obstacles[0].mesh", {"is a folder"}));
+  s.obstacles = "obstacles:\n  - mesh: fifo.obj\n";
+  EXPECT_TRUE(SceneFailsAt(s.text(), "fifo.obj", "obstacles[0].mesh", {"is a FIFO"}));
+  s.obstacles = "obstacles:\n  - mesh: /dev/zero\n";
+  EXPECT_TRUE(SceneFailsAt(s.text(), "/dev/zero", "obstacles[0].mesh", {"is a device"}));
+  fs::create_symlink(path("loop.urdf"), path("loop.urdf"));
+  ArmScene arm;
+  arm.robot = "robot:\n  urdf: loop.urdf\n";
+  EXPECT_TRUE(SceneFailsAt(arm.text(), "loop.urdf", "robot.urdf", {"symbolic link loop"}));
 }
 
 }  // namespace

@@ -296,6 +296,50 @@ std::set<NamePair> named_pairs_with_geometry(const RobotModel& robot,
   return named;
 }
 
+// A chain of `links` box links joined by revolute joints.
+std::string chain_urdf(int links) {
+  std::string text = "<robot name=\"chain\">\n";
+  for (int i = 0; i < links; ++i) {
+    text += "<link name=\"l" + std::to_string(i) +
+            "\"><collision><geometry><box size=\"0.1 0.1 0.1\"/></geometry></collision></link>\n";
+  }
+  for (int i = 1; i < links; ++i) {
+    text += "<joint name=\"j" + std::to_string(i) + "\" type=\"fixed\"><parent link=\"l" +
+            std::to_string(i - 1) + "\"/><child link=\"l" + std::to_string(i) + "\"/></joint>\n";
+  }
+  return text + "</robot>\n";
+}
+
+TEST_F(UrdfLoader, RobotsWithTooManyLinksAreRefusedAtOnce) {
+  expect_error(chain_urdf(10000), "<robot", "robot",
+               {"has 10000 links, more than the 1000 a robot may have"});
+  EXPECT_EQ(error_of(chain_urdf(300)), "");
+}
+
+TEST_F(UrdfLoader, MimicJointsDrivenBeyondTheirLimitsAreRefused) {
+  const std::string urdf = R"(<robot name="gripper">
+  <link name="palm"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="left"><collision><geometry><box size="0.01 0.01 0.1"/></geometry></collision></link>
+  <link name="right"><collision><geometry><box size="0.01 0.01 0.1"/></geometry></collision></link>
+  <joint name="open" type="prismatic"><parent link="palm"/><child link="left"/>
+    <axis xyz="1 0 0"/><limit lower="0" upper="0.04" effort="1" velocity="1"/></joint>
+  <joint name="follow" type="prismatic"><parent link="palm"/><child link="right"/>
+    <axis xyz="-1 0 0"/><limit lower="0" upper="0.04" effort="1" velocity="1"/>
+    <mimic joint="open" multiplier="MULTIPLIER" offset="0"/></joint>
+</robot>
+)";
+  auto with = [&](const std::string& multiplier) {
+    std::string text = urdf;
+    text.replace(text.find("MULTIPLIER"), 10, multiplier);
+    return text;
+  };
+  EXPECT_EQ(error_of(with("1")), "");
+  expect_error(with("3"), "<joint name=\"follow\"", "joint 'follow' mimic",
+               {"drive it over [0, 0.12]", "outside its own limits [0, 0.04]"});
+  expect_error(with("-1"), "<joint name=\"follow\"", "joint 'follow' mimic",
+               {"drive it over [-0.04, 0]"});
+}
+
 TEST(Adjacency, LinksJoinedThroughLinksWithoutGeometryAreAdjacent) {
   testing::ScratchFolder scratch;
   const RobotModel robot = load_urdf(scratch.write("tree.urdf", kTreeUrdf), {}, {"test", 0, ""});

@@ -72,8 +72,12 @@ std::uint64_t scene_fingerprint(const Scene& scene);
 // Writes the roadmap (atomically: a failed write leaves `path` as it was).
 void save_roadmap(const Roadmap& roadmap, const Scene& scene, const std::string& path);
 
-// Reads a roadmap saved for `scene`; throws std::runtime_error naming the file and what
-// is wrong when it is not a roadmap, belongs to another scene, or is damaged.
+// Reads a roadmap saved for `scene`. Throws InputError naming the file (and the
+// milestone or edge at fault) when it is not a regular file within kRoadmapFile's limit
+// (input_file.h), not a roadmap, of a size its header's counts do not give (checked
+// before it is read whole), damaged (checksum), for another scene, or holds a milestone
+// that is not finite or lies outside the bounds and joint limits, or an edge whose
+// length is not finite and 0 or more, that names a missing milestone or repeats another.
 Roadmap load_roadmap(const Scene& scene, const std::string& path);
 
 }  // namespace gplanner

@@ -16,7 +16,10 @@ struct SourceLocation {
 
 class InputError : public std::runtime_error {
  public:
-  // Message: "FILE:LINE: KEY: PROBLEM" (LINE and KEY left out when unknown).
+  // Message: "FILE:LINE: KEY: PROBLEM" (LINE and KEY left out when unknown), one line
+  // of at most a few hundred characters: control characters and terminal escapes are
+  // shown escaped (\n, \x1b), and the file, the key, each quoted value ('...') and the
+  // problem are cut to an excerpt ending "... (N bytes)" where longer.
   InputError(const SourceLocation& where, const std::string& problem);
 
   const SourceLocation& where() const { return where_; }

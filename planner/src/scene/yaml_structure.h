@@ -1,0 +1,22 @@
+#pragma once
+// The structure of a YAML file, checked through yaml-cpp's event API before a node tree
+// is built (private to the scene loader).
+
+#include <cstdint>
+#include <string>
+
+namespace gplanner {
+
+// The most nodes a document may expand to through its aliases.
+inline constexpr std::uint64_t kMaxExpandedYamlNodes = 1000000;
+
+// Throws InputError naming `path`, the line and the key path unless `text` is one YAML
+// document that parses, with no key given twice in a map, no anchor or alias within the
+// top-level map's `settings_key` (the planner settings), and aliases that expand the
+// document to at most kMaxExpandedYamlNodes nodes. Parser errors are explained: a tab
+// indenting a line, nesting beyond yaml-cpp's depth guard, and the others as "malformed
+// YAML" with what yaml-cpp says.
+void check_yaml_structure(const std::string& text, const std::string& path,
+                          const std::string& settings_key);
+
+}  // namespace gplanner

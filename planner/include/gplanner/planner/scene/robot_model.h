@@ -59,7 +59,8 @@ struct RobotModel {
   // (adjacent_link_pairs) and the SRDF's disable_collisions.
   std::vector<std::pair<int, int>> disabled_pairs;
   std::string srdf_file;
-  // The mesh files its collision geometry was loaded from (a URDF's <mesh> elements).
+  // The files its collision geometry was loaded from: a URDF's <mesh> files and what
+  // they reference (an OBJ's .mtl).
   std::vector<std::string> mesh_files;
 
   int find_link(const std::string& name) const;   // -1 when absent

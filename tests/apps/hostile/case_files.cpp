@@ -216,7 +216,7 @@ void create_file(const std::string& folder, const std::string& name, const YAML:
     }
   } else if (spec["roadmap"]) {
     write_bytes(path, roadmap_file(folder, spec["roadmap"]));
-  } else if (spec["text"]) {
+  } else if (spec["text"] || spec["parts"]) {
     write_bytes(path, build_text(spec, folder));
   } else {
     throw std::runtime_error("no way to create " + name + " given");

@@ -272,6 +272,16 @@ std::map<std::string, EntryState> snapshot(const std::string& folder) {
   return entries;
 }
 
+void give_to(const std::string& folder, int user) {
+  if (lchown(folder.c_str(), user, user) != 0) throw std::runtime_error("cannot chown " + folder);
+  std::error_code error;
+  for (fs::recursive_directory_iterator it(folder, error), end; it != end; it.increment(error)) {
+    if (error) break;
+    if (lchown(it->path().c_str(), user, user) != 0)
+      throw std::runtime_error("cannot chown " + it->path().string());
+  }
+}
+
 void make_removable(const std::string& folder) {
   std::error_code error;
   for (fs::recursive_directory_iterator it(folder, error), end; it != end; it.increment(error)) {

@@ -41,6 +41,10 @@ std::map<std::string, EntryState> snapshot(const std::string& folder);
 // One entry, or type '-' when it does not exist.
 EntryState entry_state(const std::string& path);
 
+// Makes `user` (and the group of that number) own `folder` and everything in it
+// (symlinks themselves), modes unchanged.
+void give_to(const std::string& folder, int user);
+
 // Gives the owner write permission on every folder below `folder` again (read-only
 // folders made by a case), so that it can be removed.
 void make_removable(const std::string& folder);

@@ -23,7 +23,7 @@ struct CatalogueCase {
   std::vector<std::string> changes;   // files the run may change (outputs written through)
   double limit_s = 20;                // killed as a hang after this long
   double max_s = 0;                   // > 0: the run must end within this (time limits)
-  bool needs_non_root = false;        // permission cases: root may write anyway
+  bool needs_non_root = false;        // permission cases: run as an unprivileged user
   YAML::Node output_lacks;            // file (or stdout, stderr) -> fragments it must not hold
   std::vector<std::string> output_yaml;  // outputs that must read back as YAML
 };

@@ -37,7 +37,7 @@ std::string head_of(const std::string& path, std::size_t* size) {
 }  // namespace
 
 GuardedRun run_gplan_guarded(const std::vector<std::string>& arguments, const std::string& folder,
-                             double limit_s) {
+                             double limit_s, int as_user) {
   std::vector<std::string> words = gplan_command();
   words.insert(words.end(), arguments.begin(), arguments.end());
   // Captured output lives beside the folder, not in it: the folder's entries are
@@ -56,10 +56,11 @@ GuardedRun run_gplan_guarded(const std::vector<std::string>& arguments, const st
     const rlimit file_size{256ull << 20, 256ull << 20};
     setrlimit(RLIMIT_FSIZE, &file_size);
     signal(SIGXFSZ, SIG_DFL);
-    if (chdir(folder.c_str()) != 0) _exit(120);
     const int in = open("/dev/null", O_RDONLY);
     const int out = open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int err = open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (as_user > 0 && (setgid(as_user) != 0 || setuid(as_user) != 0)) _exit(121);
+    if (chdir(folder.c_str()) != 0) _exit(120);
     dup2(in, 0);
     dup2(out, 1);
     dup2(err, 2);

@@ -19,8 +19,9 @@ struct GuardedRun {
 };
 
 // gplan (GPLAN_EXECUTABLE, or $GPLANNER_GPLAN split at spaces) with `arguments`, run in
-// `folder` with standard input from /dev/null.
+// `folder` with standard input from /dev/null; with `as_user` > 0, as that user (and
+// group), so that permissions hold where the tests run as root.
 GuardedRun run_gplan_guarded(const std::vector<std::string>& arguments, const std::string& folder,
-                             double limit_s);
+                             double limit_s, int as_user = 0);
 
 }  // namespace gplanner::hostile

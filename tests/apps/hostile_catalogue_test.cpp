@@ -55,7 +55,7 @@ std::vector<CatalogueCase> cases() {
 
 // Words that say what to change (advice), any one of which a refusal must hold.
 const std::regex kAdvice(
-    R"(\b(use|give|set|remove|add|change|expected|expects|must|raise|lower|at most|at least|one of|write|rename|choose|build|repair|fix|make|move|delete|pick|point|lower|reduce|shorten|split|keep|replace|name|drop|list|lists|quote|swap|widen|narrow|chain)\b)",
+    R"(\b(use|give|set|remove|add|change|expected|expects|must|raise|lower|at most|at least|one of|write|rename|choose|build|repair|fix|make|move|delete|pick|point|lower|reduce|shorten|split|keep|replace|name|drop|list|lists|quote|swap|widen|narrow|chain|check (its|the|that))\b)",
     std::regex::icase);
 
 // gplan's own lines on standard error ("gplan: ..."), the usage text left out.

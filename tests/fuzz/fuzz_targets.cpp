@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -338,11 +339,16 @@ void command_line(const std::uint8_t* data, std::size_t size) {
   fs::current_path(folder());
   std::string unexpected;
   {
-    const Silence silence;
+    // GPLANNER_FUZZ_VERBOSE=1 shows what gplan prints (when reproducing a finding).
+    const char* verbose = std::getenv("GPLANNER_FUZZ_VERBOSE");
+    std::unique_ptr<Silence> silence;
+    if (!(verbose && *verbose == '1')) silence = std::make_unique<Silence>();
     try {
       gplan::run_command(static_cast<int>(argv.size()) - 1, argv.data());
-    } catch (const gplan::UsageError&) {
-    } catch (const InputError&) {
+    } catch (const gplan::UsageError& e) {
+      if (!silence) std::cerr << "usage error: " << e.what() << "\n";
+    } catch (const InputError& e) {
+      if (!silence) std::cerr << "input error: " << e.what() << "\n";
     } catch (const std::exception& e) {
       unexpected = e.what();
     }

@@ -1,81 +1,17 @@
-// gplan: the command line on YAML scene files.
+// gplan: the command line on YAML scene files (the commands: gplan_commands.h).
 
 #include <iostream>
-#include <string>
 
-#include "check_command.h"
 #include "command_line.h"
-#include "gplanner/common/gpu_device.h"
+#include "gplan_commands.h"
 #include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/scene/input_error.h"
-#include "plan_command.h"
-
-namespace {
-
-const char* kUsage =
-    "usage: gplan COMMAND ...\n"
-    "  gplan check SCENE [--n N] [--seed S] [--backend gpu|cpu|fcl]\n"
-    "                    [--traversal basic|packet|balanced] [--compare BACKEND]\n"
-    "                    [--threads T] [--memory-cap-mb M] [--small-batch N] [--repeat R]\n"
-    "                    [--out FILE [--pairs]] [--json]\n"
-    "      sample N configurations (default 10000, seed 1) within the scene's bounds and\n"
-    "      joint limits and check them (default backend fcl; gpu falls back to cpu where\n"
-    "      there is no GPU); --compare runs a second backend on the same configurations\n"
-    "      and judges every disagreement by FCL's distance against the tolerance band\n"
-    "      (exit 3 when it is broken); --repeat checks the batch R times and reports the\n"
-    "      median time; --small-batch: the balanced traversal runs batches of up to N\n"
-    "      queries in one kernel, a warp per body pair (default: 1024 for robots with\n"
-    "      many links, 10 for rigid ones; 0: never); --out\n"
-    "      writes each configuration's values and its\n"
-    "      verdict (1 collision, 0 free), one per line; --json ends with a JSON summary\n"
-    "  gplan plan SCENE [--planner lazyprm|prm] [--backend gpu|cpu|fcl] [--seed S]\n"
-    "                   [--time-limit SECONDS] [--milestones N] [--traversal T] [--threads T]\n"
-    "                   [--load-roadmap FILE] [--save-roadmap FILE] [--out FILE]\n"
-    "                   [--picture FILE.svg] [--json]\n"
-    "      plan from the scene's start to its goal (default lazyprm on the gpu backend;\n"
-    "      seed, time limit and first-round milestones default to the scene's planner\n"
-    "      settings) and print the time per stage; --out writes the path (YAML),\n"
-    "      --picture a drawing of it (SVG); exit 4\n"
-    "      when no path is found within the time limit\n"
-    "  gplan info\n"
-    "      how gplanner was built and which GPU it can use\n"
-    "Output files (--out, --picture, --save-roadmap) are checked before any work: a\n"
-    "regular file or a new one in a writable folder, never a folder or device, never a\n"
-    "file the run reads or another output; a symbolic link is written through to its\n"
-    "target. Each is written whole or not at all. Exit codes: 0 done, 1 internal error,\n"
-    "2 bad input or usage, 3 checkers disagree (check --compare), 4 no path (plan);\n"
-    "SIGINT or SIGTERM stops a run cleanly, writing nothing more and leaving no temporary\n"
-    "file: exit 130 (SIGINT) or 143 (SIGTERM); a second signal ends it at once.\n";
-
-int run_info() {
-  const gplanner::GpuDevice device = gplanner::query_gpu_device();
-  std::cout << "CUDA        " << (device.compiled_with_cuda ? "compiled in" : "not compiled in")
-            << "\n";
-  if (device.available) {
-    std::cout << "GPU         " << device.name << " (sm_" << device.compute_major
-              << device.compute_minor << ", " << device.multiprocessors << " SMs, "
-              << device.memory_bytes / (1024 * 1024) << " MiB)\n";
-  } else {
-    std::cout << "GPU         none: " << device.reason << "\n";
-  }
-  return 0;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
-    std::cout << kUsage;
-    return argc < 2 ? 2 : 0;
-  }
-  const std::string command = argv[1];
   try {
-    if (command == "check") return gplan::run_check(argc, argv);
-    if (command == "plan") return gplan::run_plan(argc, argv);
-    if (command == "info") return run_info();
-    throw gplan::UsageError("unknown command '" + command + "'");
+    return gplan::run_command(argc, argv);
   } catch (const gplan::UsageError& e) {
-    std::cerr << "gplan: " << gplanner::terminal_text(e.what()) << "\n" << kUsage;
+    std::cerr << "gplan: " << gplanner::terminal_text(e.what()) << "\n" << gplan::kUsage;
     return 2;
   } catch (const gplanner::InputError& e) {
     std::cerr << "gplan: " << gplanner::terminal_text(e.what()) << "\n";

@@ -36,6 +36,8 @@ TEST(FuzzCorpus, SceneFiles) { EXPECT_GT(replay("scene", fuzz::scene_file), 10u)
 TEST(FuzzCorpus, UrdfFiles) { EXPECT_GT(replay("urdf", fuzz::urdf_file), 10u); }
 TEST(FuzzCorpus, SrdfFiles) { EXPECT_GT(replay("srdf", fuzz::srdf_file), 10u); }
 TEST(FuzzCorpus, TriangleSoups) { EXPECT_GT(replay("mesh", fuzz::triangle_soup), 10u); }
+TEST(FuzzCorpus, CommandLines) { EXPECT_GE(replay("command_line", fuzz::command_line), 10u); }
+TEST(FuzzCorpus, RoadmapFiles) { EXPECT_GE(replay("roadmap", fuzz::roadmap_file), 5u); }
 
 }  // namespace
 }  // namespace gplanner

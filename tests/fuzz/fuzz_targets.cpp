@@ -8,10 +8,16 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "command_line.h"
+#include "gplan_commands.h"
 #include "gplanner/collision_gpu/bvh.h"
+#include "gplanner/planner/planning/roadmap.h"
 #include "gplanner/planner/scene/input_error.h"
 #include "gplanner/planner/scene/mesh_loader.h"
 #include "gplanner/planner/scene/scene.h"
@@ -39,6 +45,38 @@ const char* const kArmUrdf = R"(<robot name="arm">
 </robot>
 )";
 
+const char* const kSceneYaml = R"(name: tiny
+robot:
+  mesh: box.obj
+obstacles:
+  - box: [0.2, 2.0, 2.0]
+    pose: {xyz: [0, 0, 0], quat_wxyz: [1, 0, 0, 0]}
+bounds:
+  min: [-1, -1.5, -1]
+  max: [1, 1.5, 1]
+start:
+  base: {xyz: [-0.6, 0, 0], quat_wxyz: [1, 0, 0, 0]}
+goal:
+  base: {xyz: [0.6, 0, 0], quat_wxyz: [1, 0, 0, 0]}
+planner:
+  roadmap: {milestones: 50}
+)";
+
+const char* const kArmYaml = R"(name: arm
+robot:
+  urdf: arm.urdf
+  planned_joints: [shoulder, elbow]
+obstacles:
+  - box: [0.2, 0.2, 0.2]
+    pose: {xyz: [0, 0, 1.5]}
+start:
+  joints: {shoulder: -0.5, elbow: 0.5}
+goal:
+  joints: {shoulder: 0.5, elbow: -0.5}
+planner:
+  roadmap: {milestones: 50}
+)";
+
 // One folder per process holding the fixtures, and the input written beside them;
 // removed at exit (the name is never destroyed, so that the exit handler can use it).
 const std::string& folder() {
@@ -47,6 +85,8 @@ const std::string& folder() {
     fs::create_directories(p);
     std::ofstream(p / "box.obj") << kBoxObj;
     std::ofstream(p / "arm.urdf") << kArmUrdf;
+    std::ofstream(p / "scene.yaml") << kSceneYaml;
+    std::ofstream(p / "arm.yaml") << kArmYaml;
     return new std::string(p.string());
   }();
   static const bool cleanup = std::atexit([] {
@@ -77,6 +117,68 @@ void check_message(const InputError& error) {
     finding("an input error's message holds a line break or a terminal escape");
   }
   if (message.size() > 1000) finding("an input error's message is longer than 1000 characters");
+}
+
+// The small scene's fixtures (the command line may have written over them).
+void restore_fixtures() {
+  const fs::path p = folder();
+  std::ofstream(p / "box.obj") << kBoxObj;
+  std::ofstream(p / "arm.urdf") << kArmUrdf;
+  std::ofstream(p / "scene.yaml") << kSceneYaml;
+  std::ofstream(p / "arm.yaml") << kArmYaml;
+}
+
+const Scene& small_scene() {
+  static const Scene* const scene = new Scene(load_scene(folder() + "/scene.yaml"));
+  return *scene;
+}
+
+// A valid roadmap for the small scene: start, goal and a vertex between, two edges.
+void write_valid_roadmap(const std::string& path) {
+  const Scene& scene = small_scene();
+  Roadmap roadmap(scene.space.width());
+  roadmap.add_vertex(scene.start.data());
+  roadmap.add_vertex(scene.goal.data());
+  std::vector<float> middle(scene.start.begin(), scene.start.end());
+  middle[1] = 1.2f;  // y: beside the wall
+  roadmap.add_vertex(middle.data());
+  roadmap.add_edge(0, 2, 1.0f);
+  roadmap.add_edge(1, 2, 1.0f);
+  save_roadmap(roadmap, scene, path);
+}
+
+// Whether `word` is an unsigned integer of at most twelve digits above `cap` (an
+// in-range count that would only make the run slow).
+bool slow_count(const std::string& word, unsigned long long cap) {
+  if (word.empty() || word.size() > 12) return false;
+  for (const char c : word)
+    if (c < '0' || c > '9') return false;
+  return std::stoull(word) > cap;
+}
+
+// Swallows what gplan prints while the command line target runs.
+class Silence {
+ public:
+  Silence() : out_(std::cout.rdbuf(nullptr)), err_(std::cerr.rdbuf(nullptr)) {}
+  ~Silence() {
+    std::cout.rdbuf(out_);
+    std::cerr.rdbuf(err_);
+    std::cout.clear();
+    std::cerr.clear();
+  }
+
+ private:
+  std::streambuf* out_;
+  std::streambuf* err_;
+};
+
+std::uint64_t fnv1a(const std::uint8_t* data, std::size_t size) {
+  std::uint64_t value = 1469598103934665603ull;
+  for (std::size_t i = 0; i < size; ++i) {
+    value ^= data[i];
+    value *= 1099511628211ull;
+  }
+  return value;
 }
 
 }  // namespace
@@ -207,6 +309,108 @@ void triangle_soup(const std::uint8_t* data, std::size_t size) {
     const auto above = subtree_extremes(subtree_extremes, node.child + 1, node);
     if (below.second > node.split + 1e-5f * largest || above.first < node.split - 1e-5f * largest)
       finding("an inner node's split does not part its children");
+  }
+}
+
+void command_line(const std::uint8_t* data, std::size_t size) {
+  std::vector<std::string> words;
+  if (size > 0) {
+    words.emplace_back();
+    for (std::size_t i = 0; i < size; ++i) {
+      if (data[i] == 0) {
+        words.emplace_back();
+      } else {
+        words.back() += static_cast<char>(data[i]);
+      }
+    }
+  }
+  const std::map<std::string, unsigned long long> caps = {
+      {"n", 1000}, {"repeat", 3}, {"milestones", 1000}, {"threads", 64}};
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    const std::string& word = words[i];
+    if (word.find('/') != std::string::npos) return;
+    if (word.rfind("--time-limit", 0) == 0) return;
+    for (const auto& [option, cap] : caps) {
+      const std::string flag = "--" + option;
+      if (word == flag && i + 1 < words.size() && slow_count(words[i + 1], cap)) return;
+      if (word.rfind(flag + "=", 0) == 0 && slow_count(word.substr(flag.size() + 1), cap)) return;
+    }
+  }
+  if (!words.empty() && words[0] == "plan") {
+    words.push_back("--time-limit");
+    words.push_back("0.05");
+  }
+  std::vector<char*> argv;
+  std::string program = "gplan";
+  argv.push_back(program.data());
+  for (std::string& word : words) argv.push_back(word.data());
+  argv.push_back(nullptr);
+
+  restore_fixtures();
+  write_valid_roadmap(folder() + "/map.roadmap");
+  const fs::path working = fs::current_path();
+  fs::current_path(folder());
+  std::string unexpected;
+  {
+    // GPLANNER_FUZZ_VERBOSE=1 shows what gplan prints (when reproducing a finding).
+    const char* verbose = std::getenv("GPLANNER_FUZZ_VERBOSE");
+    std::unique_ptr<Silence> silence;
+    if (!(verbose && *verbose == '1')) silence = std::make_unique<Silence>();
+    try {
+      gplan::run_command(static_cast<int>(argv.size()) - 1, argv.data());
+    } catch (const gplan::UsageError& e) {
+      if (!silence) std::cerr << "usage error: " << e.what() << "\n";
+    } catch (const InputError& e) {
+      if (!silence) std::cerr << "input error: " << e.what() << "\n";
+      check_message(e);
+    } catch (const std::exception& e) {
+      unexpected = e.what();
+    }
+  }
+  fs::current_path(working);
+  // Whatever the run wrote goes, so that the next input starts from the fixtures.
+  std::error_code ignored;
+  for (const auto& entry : fs::directory_iterator(folder(), ignored)) {
+    const std::string name = entry.path().filename().string();
+    if (name != "box.obj" && name != "arm.urdf" && name != "scene.yaml" && name != "arm.yaml")
+      fs::remove_all(entry.path(), ignored);
+  }
+  if (!unexpected.empty()) finding("gplan threw other than a usage or input error: " + unexpected);
+}
+
+void roadmap_file(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return;
+  const Scene& scene = small_scene();
+  std::vector<std::uint8_t> bytes(data + 1, data + size);
+  if ((data[0] & 1) && bytes.size() >= 8) {
+    const std::uint64_t sum = fnv1a(bytes.data(), bytes.size() - 8);
+    std::memcpy(&bytes[bytes.size() - 8], &sum, 8);
+  }
+  const std::string path = write("fuzz.roadmap", bytes.data(), bytes.size());
+  Roadmap roadmap;
+  try {
+    roadmap = load_roadmap(scene, path);
+  } catch (const InputError& e) {
+    check_message(e);
+    return;
+  }
+  const int width = scene.space.width();
+  if (roadmap.width() != width) finding("a loaded roadmap's width is not the scene's");
+  if (roadmap.vertices().size() != roadmap.vertex_count() * width)
+    finding("a loaded roadmap's vertex array does not hold its vertices");
+  for (std::size_t v = 0; v < roadmap.vertex_count(); ++v) {
+    const float* q = roadmap.vertex(v);
+    for (int k = 0; k < width; ++k)
+      if (!std::isfinite(q[k])) finding("a loaded roadmap vertex is not finite");
+    const std::string outside = scene.space.out_of_bounds(scene.robot, q);
+    if (!outside.empty()) finding("a loaded roadmap vertex is out of bounds: " + outside);
+  }
+  for (const RoadmapEdge& e : roadmap.edges()) {
+    if (e.a == e.b || e.a >= roadmap.vertex_count() || e.b >= roadmap.vertex_count())
+      finding("a loaded roadmap edge does not join two distinct existing vertices");
+    if (!std::isfinite(e.length) || e.length < 0)
+      finding("a loaded roadmap edge length is not finite and non-negative");
+    if (static_cast<int>(e.state) > 2) finding("a loaded roadmap edge state is unknown");
   }
 }
 

@@ -117,7 +117,9 @@ int run_check(int argc, char** argv) {
                           "memory-cap-mb", "small-batch", "out", "repeat"},
                          {"json", "pairs"});
   catch_interruptions();
-  if (args.positionals().size() != 1) throw UsageError("gplan check takes one scene file");
+  if (args.positionals().size() != 1)
+    throw UsageError("gplan check takes one scene file, not " +
+                     std::to_string(args.positionals().size()) + "; give exactly one");
   const std::string scene_file = args.positionals()[0];
   // Counts within ranges that keep the run feasible; --n's memory is checked below,
   // once the scene gives the row width.

@@ -9,6 +9,16 @@
 
 namespace gplan {
 
+namespace {
+
+// An argument as shown in a message: at most 40 characters of it.
+std::string excerpt(const std::string& text) {
+  if (text.size() <= 40) return text;
+  return text.substr(0, 40) + "... (" + std::to_string(text.size()) + " bytes)";
+}
+
+}  // namespace
+
 CommandLine::CommandLine(int argc, char** argv, int first, const std::set<std::string>& options,
                          const std::set<std::string>& flags) {
   for (int i = first; i < argc; ++i) {
@@ -25,17 +35,22 @@ CommandLine::CommandLine(int argc, char** argv, int first, const std::set<std::s
       value = name.substr(equals + 1);
       name = name.substr(0, equals);
     }
+    const std::string option = "--" + excerpt(name);
     if (flags.count(name)) {
-      if (inline_value) throw UsageError("--" + name + " takes no value");
+      if (inline_value)
+        throw UsageError(option + " takes no value; remove '=" + excerpt(value) + "'");
       flags_.insert(name);
     } else if (options.count(name)) {
       if (!inline_value) {
-        if (i + 1 >= argc) throw UsageError("--" + name + " needs a value");
+        if (i + 1 >= argc)
+          throw UsageError(option + " needs a value; give it as " + option + " VALUE");
         value = argv[++i];
       }
+      // A second value would silently win over the first: which one was meant?
+      if (values_.count(name)) throw UsageError(option + " given twice; give it once");
       values_[name] = value;
     } else {
-      throw UsageError("unknown option --" + name);
+      throw UsageError("unknown option " + option + "; use one of those listed below");
     }
   }
 }
@@ -58,8 +73,8 @@ unsigned long long CommandLine::count(const std::string& name, unsigned long lon
   if (digits) value = std::strtoull(text.c_str(), nullptr, 10);
   if (!digits || errno != 0 || value < low || value > high) {
     const std::string shown = text.size() > 40 ? text.substr(0, 40) + "..." : text;
-    throw UsageError("--" + name + " expects a whole number from " + std::to_string(low) +
-                     " to " + std::to_string(high) + ", not '" + shown + "'");
+    throw UsageError("--" + name + " expects a whole number from " + std::to_string(low) + " to " +
+                     std::to_string(high) + ", not '" + shown + "'");
   }
   return value;
 }

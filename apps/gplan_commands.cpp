@@ -72,7 +72,8 @@ int run_command(int argc, char** argv) {
   if (command == "check") return run_check(argc, argv);
   if (command == "plan") return run_plan(argc, argv);
   if (command == "info") return run_info();
-  throw UsageError("unknown command '" + command + "'");
+  const std::string shown = command.size() > 40 ? command.substr(0, 40) + "..." : command;
+  throw UsageError("unknown command '" + shown + "'; use check, plan or info");
 }
 
 }  // namespace gplan

@@ -22,6 +22,7 @@
 #include "gplanner/planner/planning/roadmap.h"
 #include "gplanner/planner/planning/roadmap_planner.h"
 #include "gplanner/planner/planning/scene_metric.h"
+#include "gplanner/planner/scene/input_file.h"
 #include "gplanner/planner/scene/scene.h"
 #include "interruption.h"
 
@@ -41,7 +42,9 @@ int run_plan(int argc, char** argv) {
                          {"planner", "backend", "seed", "time-limit", "milestones", "traversal",
                           "threads", "load-roadmap", "save-roadmap", "out", "picture"},
                          {"json"});
-  if (args.positionals().size() != 1) throw UsageError("gplan plan takes one scene file");
+  if (args.positionals().size() != 1)
+    throw UsageError("gplan plan takes one scene file, not " +
+                     std::to_string(args.positionals().size()) + "; give exactly one");
   const std::string scene_file = args.positionals()[0];
   gplanner::RoadmapStrategy strategy = gplanner::RoadmapStrategy::kLazyPrm;
   if (!gplanner::parse_strategy(args.text("planner", "lazyprm"), &strategy))
@@ -69,8 +72,8 @@ int run_plan(int argc, char** argv) {
   std::vector<gplanner::NamedFile> inputs{{"the scene file", scene_file}};
   if (args.has("load-roadmap")) inputs.push_back({"the --load-roadmap file", load});
   gplanner::check_output_paths(outputs, inputs);
-  if (args.has("load-roadmap") && !std::filesystem::is_regular_file(load))
-    throw UsageError("--load-roadmap " + load + ": no such file");
+  if (args.has("load-roadmap"))
+    gplanner::check_input_file(load, gplanner::kRoadmapFile, {"--load-roadmap", 0, ""});
 
   const auto setup_start = std::chrono::steady_clock::now();
   const gplanner::Scene scene = gplanner::load_scene(scene_file);
@@ -90,12 +93,12 @@ int run_plan(int argc, char** argv) {
   const double roadmap_bytes =
       gplanner::roadmap_bytes(options.milestones, scene.space.width(), options.neighbors);
   if (!gplanner::fits_in_memory(roadmap_bytes)) {
-    throw UsageError((args.has("milestones") ? "--milestones"
-                                             : scene_file + ": planner.roadmap.milestones") +
-                     (" " + std::to_string(options.milestones)) + ": the roadmap needs about " +
-                     gplanner::memory_text(roadmap_bytes) + ", more than half of this machine's " +
-                     gplanner::memory_text(gplanner::physical_memory_bytes()) +
-                     " of memory; give fewer milestones");
+    throw UsageError(
+        (args.has("milestones") ? "--milestones" : scene_file + ": planner.roadmap.milestones") +
+        (" " + std::to_string(options.milestones)) + ": the roadmap needs about " +
+        gplanner::memory_text(roadmap_bytes) + ", more than half of this machine's " +
+        gplanner::memory_text(gplanner::physical_memory_bytes()) +
+        " of memory; give fewer milestones");
   }
 
   std::unique_ptr<gplanner::CollisionChecker> checker;
@@ -197,11 +200,10 @@ int run_plan(int argc, char** argv) {
               << ",\"samples_checked\":" << result.samples_checked
               << ",\"searches\":" << result.searches << ",\"edge_batches\":" << result.edge_batches
               << ",\"rounds\":" << result.rounds << ",\"seconds\":" << t.total
-              << ",\"setup_seconds\":" << setup_s
-              << ",\"times\":{\"sampling\":" << t.sampling << ",\"state_checks\":" << t.state_checks
-              << ",\"knn\":" << t.knn << ",\"search\":" << t.search
-              << ",\"edge_checks\":" << t.edge_checks << ",\"shortcutting\":" << t.shortcutting
-              << "}}\n";
+              << ",\"setup_seconds\":" << setup_s << ",\"times\":{\"sampling\":" << t.sampling
+              << ",\"state_checks\":" << t.state_checks << ",\"knn\":" << t.knn
+              << ",\"search\":" << t.search << ",\"edge_checks\":" << t.edge_checks
+              << ",\"shortcutting\":" << t.shortcutting << "}}\n";
   }
   if (!result.solved && result.stop_reason == "memory limit") {
     std::cerr << "gplan: no path found in " << result.milestones << " milestones, and a "
@@ -211,8 +213,10 @@ int run_plan(int argc, char** argv) {
   }
   if (!result.solved) {
     std::cerr << "gplan: no path found within " << options.time_limit_s << " s ("
-              << result.milestones << " milestones); raise --time-limit or the scene's "
-              << "planner.roadmap.milestones\n";
+              << result.milestones << " milestones); raise "
+              << (args.has("time-limit") ? "--time-limit"
+                                         : "--time-limit (or the scene's planner.time_limit_s)")
+              << " or the scene's planner.roadmap.milestones\n";
     if (!unwritten.empty()) {
       std::string files;
       for (const std::string& file : unwritten) files += (files.empty() ? "" : ", ") + file;

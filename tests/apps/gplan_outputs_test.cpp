@@ -325,7 +325,9 @@ TEST_F(GplanOutputs, SigtermEndsALongCheckCleanly) {
   ScratchFolder logs;
   fs::create_directory(path("outputs"));
   expect_clean_interruption(
-      {"check", walled, "--backend", "fcl", "--n", "2000000", "--out", path("outputs/samples.txt")},
+      // Repeated so that it runs for seconds on any machine.
+      {"check", walled, "--backend", "fcl", "--n", "200000", "--repeat", "1000", "--out",
+       path("outputs/samples.txt")},
       SIGTERM, path("outputs"), logs.path() + "/log");
 }
 

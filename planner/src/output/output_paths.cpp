@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
@@ -150,6 +151,18 @@ OutputTarget writable_output_target(const std::string& option, const std::string
                                                 "; change its permissions or write elsewhere"
                                           : explain(errno));
   }
+  // Permission bits say too little (root passes them; /proc, /sys and full or
+  // read-only file systems refuse anyway): a file is made there and removed at once.
+  std::string probe = (folder / ".gplan-probe.XXXXXX").string();
+  const int probe_fd = mkstemp(probe.data());
+  if (probe_fd < 0) {
+    const int code = errno;
+    throw OutputPathError(option, path,
+                          "cannot create files in folder " + shown(folder.string()) + " (" +
+                              std::strerror(code) + "); write elsewhere");
+  }
+  close(probe_fd);
+  unlink(probe.c_str());
   return target;
 }
 

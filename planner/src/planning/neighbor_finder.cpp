@@ -28,18 +28,31 @@ class GnatNeighborFinder : public NeighborFinder {
   explicit GnatNeighborFinder(const ConfigurationMetric& metric) : metric_(metric) { reset(); }
   std::string device() const override { return "cpu"; }
 
-  void nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end, int k,
+  bool nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end, int k,
                   std::vector<int>* indices) override {
     points_ = points;
-    if (first == 0 || n < added_) reset();
-    for (std::size_t i = added_; i < n; ++i) tree_->add(static_cast<std::uint32_t>(i));
-    added_ = n;
+    // A fresh start (first 0) unless the last call was one, stopped while inserting.
+    if ((first == 0 && !resuming_fresh_) || n < added_) reset();
+    resuming_fresh_ = false;
+    indices->clear();
+    // Insertion is most of the first call's time (seconds for millions of points):
+    // the stop is polled every kStopPoll points.
+    constexpr std::size_t kStopPoll = 1024;
+    for (std::size_t i = added_, inserted = 0; i < n; ++i, ++inserted) {
+      if (inserted % kStopPoll == kStopPoll - 1 && should_stop()) {
+        resuming_fresh_ = first == 0;
+        return false;
+      }
+      tree_->add(static_cast<std::uint32_t>(i));
+      added_ = i + 1;
+    }
     indices->assign((end - first) * k, -1);
     std::vector<std::uint32_t> found;
     for (std::size_t i = first; i < end; ++i) {
       tree_->nearestK(static_cast<std::uint32_t>(i), k + 1, found);
       write_others(found.data(), found.size(), i, k, &(*indices)[(i - first) * k]);
     }
+    return true;
   }
 
  private:
@@ -56,6 +69,7 @@ class GnatNeighborFinder : public NeighborFinder {
   ConfigurationMetric metric_;
   const float* points_ = nullptr;
   std::size_t added_ = 0;
+  bool resuming_fresh_ = false;  // the last call started afresh and stopped part way
   std::unique_ptr<ompl::NearestNeighborsGNAT<std::uint32_t>> tree_;
 };
 
@@ -65,18 +79,20 @@ class BruteForceNeighborFinder : public NeighborFinder {
  public:
   explicit BruteForceNeighborFinder(const ConfigurationMetric& metric) : metric_(metric) {}
   std::string device() const override { return "cpu"; }
-  void nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end, int k,
+  bool nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end, int k,
                   std::vector<int>* indices) override {
     const std::size_t m = end - first;
     indices->assign(m * k, -1);
-    if (m == 0) return;
+    if (m == 0) return true;
     // k + 1: each point finds itself among the n.
     const NeighborTable table =
         nearest_neighbors_cpu(metric_, points, n, points + first * metric_.width(), m, k + 1);
     for (std::size_t q = 0; q < m; ++q) {
       write_others(&table.indices[q * (k + 1)], k + 1, first + q, k, &(*indices)[q * k]);
     }
+    return true;
   }
+  double query_cost(std::size_t n) const override { return static_cast<double>(n); }
 
  private:
   ConfigurationMetric metric_;
@@ -102,10 +118,11 @@ class GpuNeighborFinder : public NeighborFinder {
  public:
   explicit GpuNeighborFinder(const ConfigurationMetric& metric) : metric_(metric) {}
   std::string device() const override { return "gpu"; }
-  void nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end, int k,
+  bool nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end, int k,
                   std::vector<int>* indices) override {
     const NeighborTable table = gpu_.all_nearest(metric_, points, n, k);
     indices->assign(table.indices.begin() + first * k, table.indices.begin() + end * k);
+    return true;
   }
   bool searches_all_points() const override { return true; }
 

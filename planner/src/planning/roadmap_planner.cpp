@@ -79,7 +79,7 @@ RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
       roadmap_(scene.space.width()),
       rng_(options.seed),
       sampling_batch_(slice_seconds(options), 128, 64, std::size_t(1) << 22),
-      knn_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 18) {}
+      knn_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 40) {}
 
 double RoadmapPlanner::elapsed() const { return seconds_since(started_); }
 
@@ -154,12 +154,19 @@ bool RoadmapPlanner::connect(PlanResult* result) {
       result->stop_reason = "time limit";
       return false;
     }
-    const std::size_t end = whole ? n : std::min(n, first + knn_batch_.next());
+    // Parts in units of a query's cost (brute force: n per query), at most 2^18 queries.
+    const double cost = neighbors_->query_cost(n);
+    const std::size_t queries = static_cast<std::size_t>(std::clamp(
+        static_cast<double>(knn_batch_.next()) / cost, 1.0, static_cast<double>(1 << 18)));
+    const std::size_t end = whole ? n : std::min(n, first + queries);
     const auto started = Clock::now();
-    neighbors_->nearest_of(roadmap_.vertices().data(), n, first, end, k, &nearest);
+    if (!neighbors_->nearest_of(roadmap_.vertices().data(), n, first, end, k, &nearest)) {
+      out_of_time(result);  // the stop that ended it, as the stop reason
+      return false;
+    }
     knn_last_seconds_ = seconds_since(started);
     knn_last_points_ = n;
-    knn_batch_.record(end - first, knn_last_seconds_);
+    knn_batch_.record(static_cast<std::size_t>((end - first) * cost), knn_last_seconds_);
     // The edges' lengths on all cores, then the edges themselves in order.
     std::vector<float> lengths(nearest.size());
     parallel_for(
@@ -289,6 +296,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     return (options_.should_stop && options_.should_stop()) || elapsed() >= options_.time_limit_s;
   };
   local_.set_stop(stop_);
+  neighbors_->set_stop(stop_);  // taken back before returning: the finder may outlive us
   sampler_.set_endpoints(start, goal);
   const std::uint32_t s = roadmap_.add_vertex(start);
   const std::uint32_t g = roadmap_.add_vertex(goal);
@@ -415,6 +423,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   result.samples_checked = local_.stats().samples;
   result.edge_batches = local_.stats().batches + fine.stats().batches;
   result.times.total = elapsed();
+  neighbors_->set_stop(nullptr);
   return result;
 }
 

@@ -45,9 +45,18 @@ std::string excerpt(const std::string& text, std::size_t limit) {
   return text.substr(0, cut) + "... (" + std::to_string(text.size()) + " bytes)";
 }
 
-bool is_word_character(char c) {
-  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+// A problem longer than `limit`: its beginning and its last `tail` bytes (where the
+// advice is), the middle replaced by "... (N bytes left out) ...".
+std::string head_and_tail(const std::string& text, std::size_t limit, std::size_t tail) {
+  if (text.size() <= limit) return text;
+  std::size_t head = limit - tail, from = text.size() - tail;
+  while (head > 0 && (static_cast<unsigned char>(text[head]) & 0xc0) == 0x80) --head;
+  while (from < text.size() && (static_cast<unsigned char>(text[from]) & 0xc0) == 0x80) ++from;
+  return text.substr(0, head) + "... (" + std::to_string(from - head) + " bytes left out) ..." +
+         text.substr(from);
 }
+
+bool is_word_character(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
 // `problem` with each quoted value ('...', an opening quote after no letter, a closing
 // one before none, so that "joint's" is no quote) cut to an excerpt: messages echo
@@ -82,7 +91,7 @@ std::string format_message(const SourceLocation& where, const std::string& probl
   if (where.line > 0) message += ":" + std::to_string(where.line);
   message += ": ";
   if (!where.key.empty()) message += excerpt(escaped(where.key), kKeyExcerpt) + ": ";
-  return message + excerpt(shorten_quoted(escaped(problem)), kProblemExcerpt);
+  return message + head_and_tail(shorten_quoted(escaped(problem)), kProblemExcerpt, 100);
 }
 
 }  // namespace

@@ -158,20 +158,26 @@ TriangleMesh load_mesh(const std::string& path, const Eigen::Vector3d& scale,
   if (notices && is_collada(path)) note_ignored_up_axis(path, notices);
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  // ValidateDataStructure runs before the other steps, which trust the importer's
+  // indices (a PLY face naming a vertex past the last crashed JoinIdenticalVertices).
+  const aiScene* scene =
+      importer.ReadFile(path, aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                                  aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (files_read) {
     files_read->insert(files_read->end(), io_system->files_read().begin(),
                        io_system->files_read().end());
   }
   if (!io_system->refusal().empty()) {
-    throw InputError(referenced_from, what + " names a file that cannot be read: " +
-                                          io_system->refusal());
+    throw InputError(referenced_from,
+                     what + " names a file that cannot be read: " + io_system->refusal());
   }
   if (scene == nullptr || scene->mRootNode == nullptr) {
     const std::string error = importer.GetErrorString();
     // SortByPType removes points and lines; a file holding nothing else is left empty.
-    if (error.find("No meshes remaining") != std::string::npos) {
+    // (ValidateDataStructure says the same in its words.)
+    if (error.find("No meshes remaining") != std::string::npos ||
+        error.find("contains no faces") != std::string::npos ||
+        error.find("mNumMeshes is 0") != std::string::npos) {
       throw InputError(referenced_from, what +
                                             " has no triangles (only points or lines); give a "
                                             "mesh with at least one face");
@@ -183,10 +189,9 @@ TriangleMesh load_mesh(const std::string& path, const Eigen::Vector3d& scale,
   std::size_t triangles = 0;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) triangles += scene->mMeshes[m]->mNumFaces;
   if (triangles > kMaxMeshTriangles) {
-    throw InputError(referenced_from, what + " has " + std::to_string(triangles) +
-                                          " triangles, more than the " +
-                                          std::to_string(kMaxMeshTriangles) +
-                                          " a mesh may have; simplify it");
+    throw InputError(referenced_from,
+                     what + " has " + std::to_string(triangles) + " triangles, more than the " +
+                         std::to_string(kMaxMeshTriangles) + " a mesh may have; simplify it");
   }
   TriangleMesh mesh;
   collect_triangles(*scene, *scene->mRootNode, Eigen::Matrix4d::Identity(), &mesh, referenced_from,

@@ -293,7 +293,7 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
   auto single_dof_joint = [&](const YAML::Node& name_node, const std::string& where) {
     const std::string name = in.text(name_node, where);
     const int j = robot.find_joint(name);
-    if (j < 0) in.fail(name_node, where, "URDF '" + urdf_path + "' has no joint '" + name + "'");
+    if (j < 0) in.fail(name_node, where, "URDF '" + urdf_path + "' has no joint '" + name + "'; use the name of one of its joints");
     if (!robot.joints[j].is_single_dof()) {
       in.fail(name_node, where,
               "joint '" + name + "' is " + joint_type_name(robot.joints[j].type) +
@@ -313,7 +313,7 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
       const std::string where = key + ".planned_joints[" + std::to_string(i) + "]";
       const int j = single_dof_joint(list[i], where);
       for (int planned : space.planned_joints) {
-        if (planned == j) in.fail(list[i], where, "joint listed twice");
+        if (planned == j) in.fail(list[i], where, "joint listed twice; remove the repeat");
       }
       space.planned_joints.push_back(j);
       space.lower.push_back(robot.joints[j].lower);
@@ -502,7 +502,7 @@ void read_obstacles(const YamlReader& in, const YAML::Node& node, Scene* scene) 
       const Eigen::Vector3d scale =
           item["scale"] ? in.vector3(item["scale"], key + ".scale") : Eigen::Vector3d::Ones();
       if ((scale.array() == 0).any())
-        in.fail(item["scale"], key + ".scale", "a zero scale flattens the mesh");
+        in.fail(item["scale"], key + ".scale", "a zero scale flattens the mesh; give non-zero factors");
       const MeshCache::key_type cache_key{path, {scale.x(), scale.y(), scale.z()}};
       auto cached = meshes.find(cache_key);
       if (cached == meshes.end()) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <deque>
 #include <filesystem>
 #include <fstream>
@@ -133,6 +134,62 @@ namespace {
 // The kinematic tree's structure, checked on the XML before urdfdom reads it: urdfdom
 // gives no line numbers for these errors, and on some broken trees (cycles) leaks its
 // links.
+// Every number a link or joint gives (origins, axes, limits, mimics, inertia, shapes)
+// read before urdfdom does, so that a NaN, an infinity or a word is reported with the
+// joint or link, the element and its line (urdfdom names none of them).
+void check_numbers(const tinyxml2::XMLDocument& doc, const std::string& path) {
+  static const std::map<std::string, std::vector<const char*>> kNumbers = {
+      {"origin", {"xyz", "rpy"}},
+      {"axis", {"xyz"}},
+      {"limit", {"lower", "upper", "effort", "velocity"}},
+      {"safety_controller", {"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"}},
+      {"dynamics", {"damping", "friction"}},
+      {"mimic", {"multiplier", "offset"}},
+      {"mass", {"value"}},
+      {"inertia", {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}},
+      {"box", {"size"}},
+      {"cylinder", {"radius", "length"}},
+      {"sphere", {"radius"}},
+      {"mesh", {"scale"}},
+      {"calibration", {"rising", "falling"}}};
+  const tinyxml2::XMLElement* robot = doc.RootElement();
+  if (robot == nullptr) return;
+  for (const char* owner_tag : {"joint", "link"}) {
+    for (const tinyxml2::XMLElement* owner = robot->FirstChildElement(owner_tag); owner;
+         owner = owner->NextSiblingElement(owner_tag)) {
+      const char* owner_name = owner->Attribute("name");
+      const std::string owner_key =
+          std::string(owner_tag) + " '" + (owner_name ? owner_name : "") + "'";
+      std::vector<const tinyxml2::XMLElement*> stack{owner};
+      while (!stack.empty()) {
+        const tinyxml2::XMLElement* element = stack.back();
+        stack.pop_back();
+        for (const tinyxml2::XMLElement* child = element->FirstChildElement(); child;
+             child = child->NextSiblingElement()) {
+          stack.push_back(child);
+        }
+        const auto numbers = kNumbers.find(element->Name());
+        if (numbers == kNumbers.end()) continue;
+        for (const char* attribute : numbers->second) {
+          const char* text = element->Attribute(attribute);
+          if (text == nullptr) continue;
+          std::istringstream words(text);
+          words.imbue(std::locale::classic());
+          std::string word;
+          while (words >> word) {
+            char* end = nullptr;
+            const double value = std::strtod(word.c_str(), &end);
+            if (*end == '\0' && std::isfinite(value)) continue;
+            throw InputError({path, element->GetLineNum(),
+                              owner_key + " <" + element->Name() + " " + attribute + ">"},
+                             "'" + word + "' is not a finite number; give a number");
+          }
+        }
+      }
+    }
+  }
+}
+
 void check_tree(const tinyxml2::XMLDocument& doc, const std::string& path) {
   const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
   if (robot == nullptr) throw InputError({path, 1, "robot"}, "no <robot> element; not a URDF");
@@ -187,9 +244,9 @@ void check_tree(const tinyxml2::XMLDocument& doc, const std::string& path) {
   for (const auto& [name, line] : links)
     if (!parent_of.count(name)) roots.push_back(name);
   if (roots.size() > 1) {
-    throw InputError(
-        {path, robot->GetLineNum(), "robot"},
-        "several root links ('" + roots[0] + "', '" + roots[1] + "'); join every link to one tree");
+    throw InputError({path, robot->GetLineNum(), "robot"},
+                     "several root links ('" + roots[0] + "', '" + roots[1] +
+                         "'); add joints so that every link hangs from one root");
   }
   // With one parent per link, a link whose ancestors never reach the root lies on a
   // cycle. Each link is walked up once: a walk stops at a link known to reach the root.
@@ -207,7 +264,7 @@ void check_tree(const tinyxml2::XMLDocument& doc, const std::string& path) {
     }
     if (walked[at] == kOnThisWalk && parent_of.count(at)) {
       throw InputError({path, links.at(at), "link '" + at + "'"},
-                       "lies on a cycle of joints; a URDF is a tree");
+                       "lies on a cycle of joints; a URDF is a tree: remove a joint of the cycle");
     }
     for (const std::string& link : walk) walked[link] = kReachesRoot;
   }
@@ -437,6 +494,7 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
   check_tree(doc, urdf_path);
   const std::map<std::string, LinkElements> link_elements =
       check_collisions(doc, urdf_path, notices);
+  check_numbers(doc, urdf_path);
   const std::map<std::string, int> joint_lines = element_lines(doc, "joint");
 
   urdf::ModelInterfaceSharedPtr model;
@@ -551,7 +609,7 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
     if (joint.mimic_joint < 0 || !robot.joints[joint.mimic_joint].is_single_dof()) {
       throw InputError(where, "mimics '" + j->mimic->joint_name +
                                   "', which is not a revolute, continuous or prismatic joint "
-                                  "of this URDF");
+                                  "of this URDF; name one that is");
     }
     if (robot.joints[joint.mimic_joint].mimic_joint != -1) {
       throw InputError(where,

@@ -34,8 +34,12 @@ TEST(InputError, LongEchoedValuesAreCutToAnExcerpt) {
   const std::string from_file = InputError({long_file, 1, std::string(5000, 'k')}, "x").what();
   EXPECT_LT(from_file.size(), 500u);
   EXPECT_NE(from_file.find("... (5000 bytes)"), std::string::npos);
-  const std::string long_problem = InputError({"a.yaml", 1, ""}, std::string(5000, 'p')).what();
+  // A long problem keeps its end, where the advice is.
+  const std::string long_problem =
+      InputError({"a.yaml", 1, ""}, "bad [" + std::string(5000, 'p') + "]; fix the file").what();
   EXPECT_LT(long_problem.size(), 500u);
+  EXPECT_EQ(long_problem.rfind("; fix the file"), long_problem.size() - 14) << long_problem;
+  EXPECT_NE(long_problem.find("bytes left out"), std::string::npos) << long_problem;
 }
 
 }  // namespace

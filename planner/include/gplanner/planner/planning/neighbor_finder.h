@@ -5,6 +5,7 @@
 // rigid bodies (6 degrees of freedom or fewer), exact brute force on all threads for
 // more, where GNAT's pruning fails (measured: neighbor_finder.cpp).
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,17 +23,30 @@ class NeighborFinder {
   // the same order (a call with first 0, or fewer points than before, starts afresh).
   // indices: shape [end - first, k]: for each point in [first, end) its k nearest among
   // all n, nearest first, itself excluded, -1 where fewer than k others exist. The same
-  // whatever ranges the new points are asked in.
-  virtual void nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end,
+  // whatever ranges the new points are asked in. Returns false, with `indices` empty,
+  // where the stop (set_stop) ended the call first; the same call made again goes on
+  // from where it stopped.
+  virtual bool nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end,
                           int k, std::vector<int>* indices) = 0;
   // The points [first_new, n) in one call.
-  void nearest_of_new(const float* points, std::size_t n, std::size_t first_new, int k,
+  bool nearest_of_new(const float* points, std::size_t n, std::size_t first_new, int k,
                       std::vector<int>* indices) {
-    nearest_of(points, n, first_new, n, k, indices);
+    return nearest_of(points, n, first_new, n, k, indices);
   }
   // Whether a call costs a search of all n points whatever its range (the GPU's):
   // callers then ask for all new points at once rather than in parts.
   virtual bool searches_all_points() const { return false; }
+  // The cost of one query among n points, in the units of a query among few: 1 for a
+  // tree search, n for brute force (callers size their parts by it).
+  virtual double query_cost(std::size_t n) const { return 1; }
+  // Polled during long work that is not a search (GNAT's insertions).
+  void set_stop(std::function<bool()> stop) { stop_ = std::move(stop); }
+
+ protected:
+  bool should_stop() const { return stop_ && stop_(); }
+
+ private:
+  std::function<bool()> stop_;
 };
 
 // The GPU finder for backend "gpu" when a GPU can be used, else the CPU one (`notice`,

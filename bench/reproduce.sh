@@ -23,6 +23,11 @@
 #      plan       ours (lazy PRM, PRM) on cores 0-3 beside OMPL's     ours.jsonl,
 #                 LazyPRM, PRM, RRTConnect with FCL on the others     ompl.jsonl
 #      knn        100,000 piano milestones, k = 15: GPU, CPU, GNAT    knn.jsonl
+#      time-limit gplan plan on every shipped scene, gpu and cpu,     time_limit.jsonl
+#                 --time-limit 1 with the scene's milestones and with
+#                 --milestones 10000000: wall time, setup, planning
+#      hostile    the hostile-input catalogue through gplan (issue  hostile.txt
+#                 19), its plan cases on the gpu backend
 #      plugin     OMPL's planners with FCL beside the same planners   plugin.jsonl
 #                 with our GPU checker (PLUGIN_SCENES, default
 #                 "pr2_base_arm humanoid helicopter pr2_reach piano")
@@ -70,7 +75,7 @@ case ${1:-} in ''|-h|--help) usage; exit 2 ;; esac
 mkdir -p "$1"
 out=$(cd "$1" && pwd)
 shift
-all=(gpu-tests peak collision agreement plan knn plugin)
+all=(gpu-tests peak collision agreement plan knn time-limit hostile plugin)
 tables=("$@")
 [ ${#tables[@]} -gt 0 ] || tables=("${all[@]}")
 for t in "${tables[@]}"; do
@@ -113,6 +118,23 @@ gtest() {  # one test program's output between the lines format_gpu_tests.py rea
   "$run" "$bin/$program" "$@" 2>&1 || status=$?
   echo "== exit status: $status"
   return "$status"
+}
+time_limit_table() {  # one JSON line per run: the run's --json line and the wall time
+  local scene backend milestones start end status line
+  for scene in scenes/*.yaml; do
+    for backend in gpu cpu; do
+      for milestones in "" 10000000; do
+        start=$(date +%s.%N)
+        status=0
+        line=$("$run" "$bin/gplan" plan "$scene" --backend "$backend" --time-limit 1 \
+          ${milestones:+--milestones "$milestones"} --json 2>/dev/null | tail -1) || status=$?
+        end=$(date +%s.%N)
+        [ "${line:0:1}" = "{" ] || line='{}'
+        echo "{\"limit\":1,\"milestones_arg\":\"${milestones:-scene}\",\"exit\":$status,\"wall\":$(awk "BEGIN { print $end - $start }"),\"run\":$line}"
+        say "time-limit: $scene $backend milestones ${milestones:-of the scene}: exit $status"
+      done
+    done
+  done
 }
 collision_table() {
   if [ -d "$data/moveit_resources_pr2_description" ]; then
@@ -163,6 +185,13 @@ for t in "${tables[@]}"; do
       ;;
     knn)
       "$run" "$bin/gplanner_knn_bench" > "$out/knn.jsonl" || failed+=("$t")
+      ;;
+    time-limit)
+      time_limit_table > "$out/time_limit.jsonl" || failed+=("$t")
+      ;;
+    hostile)
+      gtest gplanner_tests --gtest_filter='*HostileCatalogue*' > "$out/hostile.txt" || failed+=("$t")
+      grep -E '^\[  (PASSED|FAILED) +\]' "$out/hostile.txt" >&2 || true
       ;;
     plugin)
       # As at 173b0cf: 10 runs of at most 30 s; the plugin's runs one after another on

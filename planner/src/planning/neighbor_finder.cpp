@@ -25,14 +25,14 @@ void write_others(const Index* candidates, std::size_t count, std::size_t self, 
 // OMPL's GNAT over point indices, the points read from the caller's array at each call.
 class GnatNeighborFinder : public NeighborFinder {
  public:
-  explicit GnatNeighborFinder(const ConfigurationMetric& metric) : metric_(metric) { reset(); }
+  explicit GnatNeighborFinder(const ConfigurationMetric& metric) : metric_(metric) { clear_tree(); }
   std::string device() const override { return "cpu"; }
 
   bool nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end, int k,
                   std::vector<int>* indices) override {
     points_ = points;
     // A fresh start (first 0) unless the last call was one, stopped while inserting.
-    if ((first == 0 && !resuming_fresh_) || n < added_) reset();
+    if ((first == 0 && !resuming_fresh_) || n < added_) clear_tree();
     resuming_fresh_ = false;
     indices->clear();
     // Insertion is most of the first call's time (seconds for millions of points):
@@ -55,8 +55,13 @@ class GnatNeighborFinder : public NeighborFinder {
     return true;
   }
 
+  void reset() override {
+    clear_tree();
+    resuming_fresh_ = false;
+  }
+
  private:
-  void reset() {
+  void clear_tree() {
     tree_ = std::make_unique<ompl::NearestNeighborsGNAT<std::uint32_t>>();
     tree_->setDistanceFunction([this](const std::uint32_t& a, const std::uint32_t& b) {
       const int w = metric_.width();

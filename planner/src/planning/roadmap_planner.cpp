@@ -79,7 +79,44 @@ RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
       roadmap_(scene.space.width()),
       rng_(options.seed),
       sampling_batch_(slice_seconds(options), 128, 64, std::size_t(1) << 22),
-      knn_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 40) {}
+      knn_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 40) {
+  neighbors_->reset();
+}
+
+void RoadmapPlanner::set_roadmap(Roadmap roadmap) {
+  roadmap_ = std::move(roadmap);
+  connected_ = 0;
+  certified_.clear();
+  neighbors_->reset();
+  loaded_unchecked_ = roadmap_.vertex_count();
+  const ConfigurationMetric& metric = local_.metric();
+  for (std::size_t e = 0; e < roadmap_.edge_count(); ++e) {
+    RoadmapEdge& edge = roadmap_.edge(e);
+    edge.length = configuration_distance(metric, roadmap_.vertex(edge.a), roadmap_.vertex(edge.b));
+  }
+}
+
+bool RoadmapPlanner::check_loaded_milestones(PlanResult* result) {
+  std::vector<std::uint8_t> colliding;
+  while (loaded_unchecked_ > 0) {
+    if (stop_()) return false;
+    StageTimer timer(&result->times.state_checks);
+    const std::size_t count = std::min<std::size_t>(loaded_unchecked_, sampling_batch_.next());
+    const std::size_t first = loaded_unchecked_ - count;
+    colliding.assign(count, 1);
+    const auto started = Clock::now();
+    checker_->check(roadmap_.vertex(first), count, colliding.data());
+    sampling_batch_.record(count, seconds_since(started));
+    result->states_checked += count;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!colliding[i]) continue;
+      for (const std::uint32_t e : roadmap_.edges_at(first + i))
+        roadmap_.edge(e).state = EdgeState::kInvalid;
+    }
+    loaded_unchecked_ = first;
+  }
+  return true;
+}
 
 double RoadmapPlanner::elapsed() const { return seconds_since(started_); }
 
@@ -149,6 +186,19 @@ bool RoadmapPlanner::connect(PlanResult* result) {
   if (connected_ < n) roadmap_.reserve_edges(roadmap_.edge_count() + (n - connected_) * k);
   for (std::size_t first = std::min(connected_, n); first < n;) {
     if (out_of_time(result)) return false;
+    // The first call of a finder that searches all points, over many: timed first on a
+    // prefix, so that its time can be foreseen (quadratic in the points).
+    constexpr std::size_t kProbePoints = std::size_t(1) << 16;
+    if (whole && knn_last_points_ == 0 && n > kProbePoints) {
+      const auto probe_started = Clock::now();
+      if (!neighbors_->nearest_of(roadmap_.vertices().data(), kProbePoints, 0, kProbePoints, k,
+                                  &nearest)) {
+        out_of_time(result);
+        return false;
+      }
+      knn_last_seconds_ = seconds_since(probe_started);
+      knn_last_points_ = kProbePoints;
+    }
     const double scale = knn_last_points_ ? static_cast<double>(n) / knn_last_points_ : 0;
     if (whole && elapsed() + knn_last_seconds_ * scale * scale > options_.time_limit_s) {
       result->stop_reason = "time limit";
@@ -297,6 +347,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   };
   local_.set_stop(stop_);
   neighbors_->set_stop(stop_);  // taken back before returning: the finder may outlive us
+  const bool loaded_checked = check_loaded_milestones(&result);
   sampler_.set_endpoints(start, goal);
   const std::uint32_t s = roadmap_.add_vertex(start);
   const std::uint32_t g = roadmap_.add_vertex(goal);
@@ -305,7 +356,8 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   fine.set_stop(stop_);
   const bool lazy = strategy_ == RoadmapStrategy::kLazyPrm;
   GraphPath found;
-  for (std::size_t round = 0; found.vertices.empty(); ++round) {
+  if (!loaded_checked) out_of_time(&result);  // the stop that came first, as the reason
+  for (std::size_t round = 0; loaded_checked && found.vertices.empty(); ++round) {
     if (out_of_time(&result)) break;
     result.rounds = round + 1;
     // The first round samples `milestones` (none more when a loaded roadmap has that

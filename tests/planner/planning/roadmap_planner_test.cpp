@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "gplanner/planner/checkers/cpu_checker.h"
 #include "gplanner/planner/planning/scene_metric.h"
 #include "gplanner/planner/scene/scene.h"
@@ -137,11 +139,52 @@ TEST(RoadmapPlanner, ASavedRoadmapIsUsedAgain) {
   const PlanResult b = second.solve(p.scene.start.data(), p.scene.goal.data());
   ASSERT_TRUE(b.solved);
   EXPECT_EQ(testing::path_problem(p.scene, b.path), "");
-  // No new milestones: the loaded ones (plus this query's start and goal) sufficed, and
-  // only the edges of the new start and goal were checked.
-  EXPECT_EQ(b.states_checked, 0u);
+  // No new milestones: the loaded ones (plus this query's start and goal) sufficed, each
+  // checked once, and only the edges of the new start and goal were checked.
+  EXPECT_EQ(b.states_checked, a.milestones);
   EXPECT_EQ(b.milestones, a.milestones + 2);
   EXPECT_LT(b.edges_checked, a.edges_checked / 10);
+}
+
+// A roadmap file is input: a milestone in an obstacle, in a file with a valid checksum,
+// loses its edges (even those the file calls valid) before any search.
+TEST(RoadmapPlanner, ALoadedMilestoneInAnObstacleLosesItsEdges) {
+  Planning p("piano.yaml");
+  const int width = p.scene.space.width();
+  std::mt19937_64 rng(7);
+  std::vector<float> inside(width), free_q(width);
+  std::uint8_t verdict = 0;
+  do {
+    p.scene.space.sample_uniform(&rng, inside.data());
+    p.checker.check(inside.data(), 1, &verdict);
+  } while (!verdict);
+  do {
+    p.scene.space.sample_uniform(&rng, free_q.data());
+    p.checker.check(free_q.data(), 1, &verdict);
+  } while (verdict);
+  Roadmap crafted(width);
+  crafted.add_vertex(p.scene.start.data());
+  crafted.add_vertex(p.scene.goal.data());
+  crafted.add_vertex(inside.data());
+  crafted.add_vertex(free_q.data());
+  crafted.add_edge(0, 2, 0.0f, EdgeState::kValid);  // lengths and states as a forger wrote them
+  crafted.add_edge(1, 2, 0.0f, EdgeState::kValid);
+  crafted.add_edge(0, 3, 0.0f, EdgeState::kUnknown);
+  testing::ScratchFolder scratch;
+  save_roadmap(crafted, p.scene, scratch.path() + "/r.roadmap");
+  PlanOptions options = plan_options(p.scene);
+  options.milestones = 200;
+  options.time_limit_s = 2;
+  RoadmapPlanner planner(p.scene, &p.checker, p.neighbors.get(), RoadmapStrategy::kLazyPrm,
+                         options);
+  planner.set_roadmap(load_roadmap(p.scene, scratch.path() + "/r.roadmap"));
+  const PlanResult result = planner.solve(p.scene.start.data(), p.scene.goal.data());
+  if (result.solved) EXPECT_EQ(testing::path_problem(p.scene, result.path), "");
+  const Roadmap& roadmap = planner.roadmap();
+  EXPECT_EQ(roadmap.edge(0).state, EdgeState::kInvalid);
+  EXPECT_EQ(roadmap.edge(1).state, EdgeState::kInvalid);
+  // Lengths recomputed under the metric, not taken from the file.
+  EXPECT_GT(roadmap.edge(2).length, 0.0f);
 }
 
 }  // namespace

@@ -50,12 +50,12 @@ class RoadmapPlanner {
   PlanResult solve(const float* start, const float* goal);
 
   const Roadmap& roadmap() const { return roadmap_; }
-  // Starts from a saved roadmap (its milestones and edge states are kept).
-  void set_roadmap(Roadmap roadmap) {
-    roadmap_ = std::move(roadmap);
-    connected_ = 0;
-    certified_.clear();
-  }
+  // Starts from a saved roadmap: its edge states are kept (an edge is certified by the
+  // final re-check before a path uses it all the same), its edge lengths recomputed
+  // under the metric, and its milestones checked at the next solve() (a milestone found
+  // colliding loses its edges), so that a file, however made, cannot lead through an
+  // obstacle.
+  void set_roadmap(Roadmap roadmap);
   const PlanOptions& options() const { return options_; }
   // New settings for the next solve() (the roadmap stays; the local planner keeps the
   // resolution it was made with).
@@ -68,6 +68,9 @@ class RoadmapPlanner {
   // (stop_reason set).
   bool connect(PlanResult* result);
   void check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result);
+  // Checks the loaded milestones not yet checked, in slices; the edges of those found
+  // colliding become invalid. False where the stop came first (the rest wait).
+  bool check_loaded_milestones(PlanResult* result);
   // The motions along `edges` checked by `planner` (invalid: one entry per edge); false
   // when its stop condition ended the check part way.
   bool check_edge_motions(LocalPlanner* planner, const std::vector<std::uint32_t>& edges,
@@ -99,6 +102,8 @@ class RoadmapPlanner {
   std::vector<float> surplus_;
   // Milestones [0, connected_) have been joined to their neighbours.
   std::size_t connected_ = 0;
+  // Milestones [0, loaded_unchecked_) of a loaded roadmap still to be checked.
+  std::size_t loaded_unchecked_ = 0;
   // Edges that passed the fine re-check (in the roadmap as it is now).
   std::unordered_set<std::uint32_t> certified_;
   std::chrono::steady_clock::time_point started_;

@@ -86,7 +86,7 @@ double CommandLine::positive_number(const std::string& name, double fallback) co
   char* end = nullptr;
   const double value = std::strtod(it->second.c_str(), &end);
   if (it->second.empty() || *end != '\0' || errno != 0 || !(value > 0) || !std::isfinite(value)) {
-    throw UsageError("--" + name + " expects a positive number, not '" + it->second + "'");
+    throw UsageError("--" + name + " expects a positive number, not '" + excerpt(it->second) + "'");
   }
   return value;
 }

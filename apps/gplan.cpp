@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <vector>
 
 #include "command_line.h"
 #include "gplan_commands.h"
@@ -30,25 +31,33 @@ int run(int argc, char** argv) {
   }
 }
 
-// Whether the process holds the NVIDIA driver's files open (it made a CUDA context).
-bool holds_gpu() {
+// The process's open descriptors other than the NVIDIA driver's, and whether it holds
+// any of the driver's (it made a CUDA context).
+bool gpu_files(std::vector<int>* others) {
+  bool gpu = false;
   std::error_code error;
   for (const auto& entry : std::filesystem::directory_iterator("/proc/self/fd", error)) {
     const std::string target = std::filesystem::read_symlink(entry.path(), error).string();
-    if (target.rfind("/dev/nvidia", 0) == 0) return true;
+    if (target.rfind("/dev/nvidia", 0) == 0) {
+      gpu = true;
+    } else {
+      others->push_back(std::atoi(entry.path().filename().c_str()));
+    }
   }
-  return false;
+  return gpu;
 }
 
 // The NVIDIA driver tears a CUDA context down when the last of its files is closed:
 // about 0.1 s on an H100, after the time limit, whoever waits for gplan. So where gplan
-// used the GPU a child keeps those files (with nothing else: no standard streams) until
-// gplan has ended, and the teardown is its.
+// used the GPU a child keeps the driver's files (and nothing else: the caller's pipes and
+// terminal are closed in it) until gplan has ended, and the teardown is its.
 void leave_gpu_teardown_to_a_child() {
+  std::vector<int> others;
+  if (!gpu_files(&others)) return;
   const pid_t parent = getpid();
   const pid_t child = fork();
   if (child != 0) return;  // gplan itself, or no child: the teardown stays ours
-  for (int fd = 0; fd <= 2; ++fd) close(fd);
+  for (const int fd : others) close(fd);
   for (int i = 0; i < 5000 && getppid() == parent; ++i) usleep(1000);
   _exit(0);
 }
@@ -61,6 +70,6 @@ int main(int argc, char** argv) {
   std::cout.flush();
   std::cerr.flush();
   std::fflush(nullptr);
-  if (holds_gpu()) leave_gpu_teardown_to_a_child();
+  leave_gpu_teardown_to_a_child();
   std::_Exit(code);
 }

@@ -30,8 +30,10 @@ void catch_interruptions() {
   action.sa_handler = record_signal;
   sigemptyset(&action.sa_mask);
   // The first signal asks the run to stop; the handler is then reset, so that a second
-  // one ends a run that does not stop in time.
-  action.sa_flags = SA_RESETHAND;
+  // one ends a run that does not stop in time. SA_RESTART: a write to the terminal the
+  // signal comes in the middle of goes on (else the stream would fail and later lines,
+  // the "interrupted" one among them, be lost).
+  action.sa_flags = SA_RESETHAND | SA_RESTART;
   for (const int signal_number : {SIGINT, SIGTERM}) {
     // A signal ignored on entry (a background job of a script, for SIGINT) stays ignored.
     struct sigaction previous {};

@@ -93,12 +93,13 @@ int run_plan(int argc, char** argv) {
   const double roadmap_bytes =
       gplanner::roadmap_bytes(options.milestones, scene.space.width(), options.neighbors);
   if (!gplanner::fits_in_memory(roadmap_bytes)) {
-    throw UsageError(
-        (args.has("milestones") ? "--milestones" : scene_file + ": planner.roadmap.milestones") +
-        (" " + std::to_string(options.milestones)) + ": the roadmap needs about " +
-        gplanner::memory_text(roadmap_bytes) + ", more than half of this machine's " +
-        gplanner::memory_text(gplanner::physical_memory_bytes()) +
-        " of memory; give fewer milestones");
+    const std::string problem = "the roadmap of " + std::to_string(options.milestones) +
+                                " milestones needs about " + gplanner::memory_text(roadmap_bytes) +
+                                ", more than half of this machine's " +
+                                gplanner::memory_text(gplanner::physical_memory_bytes()) +
+                                " of memory; give fewer milestones";
+    if (args.has("milestones")) throw UsageError("--milestones: " + problem);
+    throw gplanner::InputError({scene_file, 0, "planner.roadmap.milestones"}, problem);
   }
 
   std::unique_ptr<gplanner::CollisionChecker> checker;

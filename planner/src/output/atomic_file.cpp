@@ -1,5 +1,6 @@
 #include "gplanner/planner/output/atomic_file.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "gplanner/planner/output/output_paths.h"
@@ -18,8 +20,15 @@ namespace gplanner {
 namespace {
 
 // Permission bits for a new file: what the umask leaves of rw-rw-rw-, as creating it
-// directly would give.
+// directly would give. The umask is read from /proc (setting it to read it would race
+// with other threads creating files); where /proc does not say, umask() it is.
 mode_t new_file_mode() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("Umask:", 0) == 0)
+      return 0666 & ~static_cast<mode_t>(std::strtoul(line.c_str() + 6, nullptr, 8));
+  }
   const mode_t mask = umask(0);
   umask(mask);
   return 0666 & ~mask;
@@ -46,16 +55,11 @@ void write_file_atomically(const std::string& path,
                              file.parent_path().string() + ": " + std::strerror(errno));
   }
   const std::string temporary(name.data());
+  bool descriptor_open = true;
   try {
-    const mode_t mode = target.exists ? target.mode : new_file_mode();
-    const int chmod_error = fchmod(descriptor, mode) == 0 ? 0 : errno;
-    // Replacing a file keeps its owner where we may (root replacing a user's file); an
-    // ordinary user cannot give a file away, and the file becomes theirs.
-    if (target.exists && fchown(descriptor, target.owner, target.group) != 0) errno = 0;
-    close(descriptor);
-    if (chmod_error != 0) {
-      throw std::runtime_error("cannot write " + path + ": " + std::strerror(chmod_error));
-    }
+    // The content first (through the name, while the descriptor keeps the file ours),
+    // then on disk, then the permission bits (a mode without write permission for us,
+    // a replaced file's, must not stop the writing), then the rename.
     {
       std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
       if (!out) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
@@ -63,10 +67,30 @@ void write_file_atomically(const std::string& path,
       out.flush();
       if (!out) throw std::runtime_error("writing " + path + " failed (disk full?)");
     }
+    if (fsync(descriptor) != 0) {
+      throw std::runtime_error("writing " + path + " failed: " + std::strerror(errno));
+    }
+    const mode_t mode = target.exists ? target.mode : new_file_mode();
+    const int chmod_error = fchmod(descriptor, mode) == 0 ? 0 : errno;
+    // Replacing a file keeps its owner where we may (root replacing a user's file); an
+    // ordinary user cannot give a file away, and the file becomes theirs.
+    if (target.exists && fchown(descriptor, target.owner, target.group) != 0) errno = 0;
+    close(descriptor);
+    descriptor_open = false;
+    if (chmod_error != 0) {
+      throw std::runtime_error("cannot write " + path + ": " + std::strerror(chmod_error));
+    }
     if (std::rename(temporary.c_str(), target.path.c_str()) != 0) {
       throw std::runtime_error("cannot replace " + path + ": " + std::strerror(errno));
     }
+    // The rename itself on disk: the folder synced (where it can be opened).
+    const int folder = open(file.parent_path().c_str(), O_RDONLY | O_DIRECTORY);
+    if (folder >= 0) {
+      fsync(folder);
+      close(folder);
+    }
   } catch (...) {
+    if (descriptor_open) close(descriptor);
     std::remove(temporary.c_str());
     throw;
   }

@@ -30,12 +30,14 @@ class StageTimer {
   Clock::time_point start_;
 };
 
-// How long one slice of a long stage should take: 1 % of the time limit, within
-// [20 ms, 40 ms], so that the time limit is kept within the larger of 5 % and 100 ms
-// and a stop (should_stop: SIGINT, OMPL's conditions) is honoured within 100 ms, while
-// a fast backend still gets batches of millions.
+// How long one slice of a long stage should take: 2 % of the time limit, within
+// [20 ms, 250 ms], so that the time limit is kept within the larger of 5 % and 100 ms
+// and a stop (should_stop: SIGINT, OMPL's conditions) is honoured within about a
+// slice, while every call stays long against its fixed costs (with slices of at most
+// 40 ms, lazy PRM on 16 cores took up to 1.8x its time at bc00c10 on the cpu backend:
+// bench/RESULTS.md, "The time limit").
 double slice_seconds(const PlanOptions& options) {
-  return std::clamp(0.01 * options.time_limit_s, 0.02, 0.04);
+  return std::clamp(0.02 * options.time_limit_s, 0.02, 0.25);
 }
 
 LocalPlannerOptions sliced(LocalPlannerOptions options, const PlanOptions& plan) {

@@ -23,7 +23,10 @@ void TimedBatchSize::record(std::size_t items, double seconds) {
   // Items the target time holds at this call's rate (a call too quick to time: grow).
   const double at_rate =
       seconds > 0 ? items * target_seconds_ / seconds : items * kMaxGrowth;
-  const double size = std::min(at_rate, static_cast<double>(items) * kMaxGrowth);
+  double size = std::min(at_rate, static_cast<double>(std::max(items, size_)) * kMaxGrowth);
+  // A call smaller than the size asked (the last part of a stage) that kept within the
+  // target says nothing against that size: its fixed costs weigh more.
+  if (items < size_ && seconds <= target_seconds_) size = std::max(size, static_cast<double>(size_));
   size_ = static_cast<std::size_t>(
       std::clamp(std::floor(size), static_cast<double>(least_), static_cast<double>(most_)));
 }

@@ -12,7 +12,7 @@ set -euo pipefail
 dir=${1%/}
 shift
 bench=$(cd "$(dirname "$0")" && pwd)
-all=(collision agreement gpu-tests plan knn plugin)
+all=(collision agreement gpu-tests plan knn time-limit plugin)
 files() {  # the files a table is made from
   case $1 in
     collision) echo table.jsonl ;;
@@ -20,6 +20,7 @@ files() {  # the files a table is made from
     gpu-tests) echo gpu_tests.txt ;;
     plan) echo ours.jsonl ompl.jsonl ;;
     knn) echo knn.jsonl ;;
+    time-limit) echo time_limit.jsonl ;;
     plugin) echo plugin.jsonl ;;
     peak) echo peak.json ;;
     *) echo "format_tables.sh: no table named '$1'; the tables are: ${all[*]}" >&2; return 2 ;;
@@ -80,6 +81,9 @@ for t in "${tables[@]}"; do
     knn)
       echo "$t (${paths[*]}):"; echo
       python3 "$bench/format_knn_table.py" "${paths[0]}" ;;
+    time-limit)
+      echo "$t (${paths[*]}):"; echo
+      python3 "$bench/format_time_limit_table.py" "${paths[0]}" ;;
     plugin)
       echo "$t (${paths[*]}):"; echo
       python3 "$bench/format_plan_table.py" --only plugin "${paths[@]}" ;;

@@ -310,9 +310,9 @@ int run_check(int argc, char** argv) {
     std::cout << "wrote       " << gplanner::terminal_text(out) << "\n";
   }
   if (args.flag("json")) {
-    std::cout << std::setprecision(6) << "{\"scene\":" << json_string(scene_file)
-              << ",\"name\":" << json_string(scene.name)
-              << ",\"backend\":" << json_string(checker->backend()) << ",\"n\":" << n
+    std::cout << std::setprecision(6) << "{\"scene\":" << gplanner::json_string(scene_file)
+              << ",\"name\":" << gplanner::json_string(scene.name)
+              << ",\"backend\":" << gplanner::json_string(checker->backend()) << ",\"n\":" << n
               << ",\"seed\":" << seed << ",\"dof\":" << space.dof() << ",\"width\":" << width
               << ",\"links\":" << scene.robot.links.size()
               << ",\"robot_triangles\":" << scene.robot.triangle_count()
@@ -325,7 +325,8 @@ int run_check(int argc, char** argv) {
               << ",\"queries_per_second\":" << rate
               << ",\"straight_line_collides\":" << (line_collision >= 0 ? "true" : "false");
     if (auto* gpu = dynamic_cast<gplanner::GpuChecker*>(checker.get())) {
-      std::cout << ",\"traversal\":" << json_string(gplanner::traversal_name(gpu->traversal()))
+      std::cout << ",\"traversal\":"
+                << gplanner::json_string(gplanner::traversal_name(gpu->traversal()))
                 << ",\"gpu_ms\":" << gpu->last_stats().milliseconds
                 << ",\"bv_tests\":" << gpu->last_stats().bv_tests
                 << ",\"triangle_tests\":" << gpu->last_stats().triangle_tests
@@ -333,7 +334,7 @@ int run_check(int argc, char** argv) {
                 << ",\"small_batch\":" << (gpu->last_stats().warp_per_pair ? "true" : "false");
     }
     if (!compare.empty()) {
-      std::cout << ",\"compare\":{\"backend\":" << json_string(compared_backend)
+      std::cout << ",\"compare\":{\"backend\":" << gplanner::json_string(compared_backend)
                 << ",\"seconds\":" << compare_s << ",\"disagreements\":" << comparison.disagreements
                 << ",\"missed_collisions\":" << comparison.missed_collisions
                 << ",\"extra_within_band\":" << comparison.extra_within_band

@@ -4,8 +4,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <iomanip>
-#include <sstream>
 
 namespace gplan {
 
@@ -89,23 +87,6 @@ double CommandLine::positive_number(const std::string& name, double fallback) co
     throw UsageError("--" + name + " expects a positive number, not '" + excerpt(it->second) + "'");
   }
   return value;
-}
-
-std::string json_string(const std::string& text) {
-  std::ostringstream out;
-  out << '"';
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out << '\\' << c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << static_cast<int>(c)
-          << std::dec;
-    } else {
-      out << c;
-    }
-  }
-  out << '"';
-  return out.str();
 }
 
 }  // namespace gplan

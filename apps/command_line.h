@@ -38,8 +38,4 @@ class CommandLine {
   std::set<std::string> flags_;
 };
 
-// `text` as a JSON string literal (quoted, with quotes, backslashes and control
-// characters escaped).
-std::string json_string(const std::string& text);
-
 }  // namespace gplan

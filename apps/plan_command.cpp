@@ -186,13 +186,14 @@ int run_plan(int argc, char** argv) {
   for (const std::string& file : written)
     std::cout << "wrote       " << gplanner::terminal_text(file) << "\n";
   if (args.flag("json")) {
-    std::cout << std::setprecision(6) << "{\"scene\":" << json_string(scene_file)
-              << ",\"name\":" << json_string(scene.name)
-              << ",\"planner\":" << json_string(gplanner::strategy_name(strategy))
-              << ",\"backend\":" << json_string(checker->backend())
-              << ",\"knn\":" << json_string(neighbors->device()) << ",\"seed\":" << options.seed
+    std::cout << std::setprecision(6) << "{\"scene\":" << gplanner::json_string(scene_file)
+              << ",\"name\":" << gplanner::json_string(scene.name)
+              << ",\"planner\":" << gplanner::json_string(gplanner::strategy_name(strategy))
+              << ",\"backend\":" << gplanner::json_string(checker->backend())
+              << ",\"knn\":" << gplanner::json_string(neighbors->device())
+              << ",\"seed\":" << options.seed
               << ",\"solved\":" << (result.solved ? "true" : "false")
-              << ",\"stop_reason\":" << json_string(result.stop_reason)
+              << ",\"stop_reason\":" << gplanner::json_string(result.stop_reason)
               << ",\"length\":" << result.length
               << ",\"length_before_shortcut\":" << result.length_before_shortcut
               << ",\"waypoints\":" << waypoints << ",\"milestones\":" << result.milestones

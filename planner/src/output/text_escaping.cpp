@@ -124,6 +124,25 @@ std::string xml_escaped(std::string_view text) {
   return out;
 }
 
+std::string json_string(std::string_view text) {
+  std::string out = "\"";
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t begin = at;
+    const char32_t c = next_code_point(text, &at);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c == kInvalid) {
+      out += kReplacement;
+    } else if (c < 0x20 || c == 0x7F) {
+      out += hex("\\u", c, 4);
+    } else {
+      out.append(text.substr(begin, at - begin));
+    }
+  }
+  return out + "\"";
+}
+
 std::string yaml_scalar(std::string_view text) {
   if (is_plain_yaml_word(text)) return std::string(text);
   std::string out = "\"";

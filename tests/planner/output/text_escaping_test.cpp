@@ -1,4 +1,5 @@
-// Names from input escaped for the format they are written in: XML, YAML, the terminal.
+// Names from input escaped for the format they are written in: XML, YAML, JSON, the
+// terminal.
 
 #include "gplanner/planner/output/text_escaping.h"
 
@@ -115,6 +116,24 @@ TEST(TextEscaping, TerminalTextHasNoControlCharacters) {
       const auto byte = static_cast<unsigned char>(c);
       EXPECT_TRUE(byte >= 0x20 && byte != 0x7f) << "a control byte left in " << terminal_text(name);
     }
+  }
+}
+
+TEST(TextEscaping, JsonStringsAreValidJson) {
+  EXPECT_EQ(json_string("a\"b\\c"), "\"a\\\"b\\\\c\"");
+  EXPECT_EQ(json_string("x\n\x1b"), "\"x\\u000a\\u001b\"");
+  EXPECT_EQ(json_string("caf\xc3\xa9"), "\"caf\xc3\xa9\"");
+  EXPECT_EQ(json_string("\xff"), "\"\xef\xbf\xbd\"") << "invalid UTF-8 as U+FFFD";
+  for (const std::string& name : kHostileNames) {
+    const std::string json = json_string(name);
+    for (const char c : json) {
+      const auto byte = static_cast<unsigned char>(c);
+      EXPECT_TRUE(byte >= 0x20 && byte != 0x7f) << "a control byte left in " << json;
+    }
+    // A JSON string is a YAML double-quoted scalar: it reads back as the name (with
+    // U+FFFD where the name was not UTF-8).
+    const std::string back = YAML::Load(json).as<std::string>();
+    EXPECT_EQ(json_string(back), json) << name;
   }
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // Text taken from input (scene and file names, link and joint names) made safe for the
-// format it is written in: XML (the SVG picture), YAML (the path file) and the
-// terminal. Bytes that are not UTF-8 become U+FFFD (or \xNN on the terminal).
+// format it is written in: XML (the SVG picture), YAML (the path file), JSON (--json)
+// and the terminal. Bytes that are not UTF-8 become U+FFFD (or \xNN on the terminal).
 
 #include <string>
 #include <string_view>
@@ -19,6 +19,10 @@ std::string xml_escaped(std::string_view text);
 // double-quoted with \" \\ and control characters escaped. Invalid UTF-8 bytes
 // become U+FFFD.
 std::string yaml_scalar(std::string_view text);
+
+// A JSON string literal (quoted) that reads back as `text`: " and \\ escaped, control
+// characters as \uNNNN, invalid UTF-8 bytes as U+FFFD (JSON text is UTF-8).
+std::string json_string(std::string_view text);
 
 // For the terminal: control characters (C0, DEL and C1, escape sequences among them)
 // and invalid UTF-8 bytes shown as \n, \t, \r, \e or \xNN instead of sent raw.

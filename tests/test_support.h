@@ -34,6 +34,12 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
+// The whole content of the file at `path` (empty when it cannot be read).
+std::string read_file(const std::string& path);
+
+// `text` in single quotes, for run_gplan's shell syntax (text without quotes of its own).
+inline std::string shell_quoted(const std::string& text) { return "'" + text + "'"; }
+
 // Runs the gplan program built beside the tests with `arguments` (shell syntax); where
 // $GPLANNER_GPLAN is set, that command line instead (e.g. ".gpu/run .gpu/bin/gplan").
 CommandResult run_gplan(const std::string& arguments);

@@ -46,15 +46,6 @@ const double kMin[3] = {-2, -1.5, -1};
 const double kMax[3] = {2, 1.5, 1};
 constexpr int kWidth = 7;  // x y z qw qx qy qz
 
-std::string shell_quoted(const std::string& text) { return "'" + text + "'"; }
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // 1-based number of the first line of `text` containing `needle` (0 when none).
 int line_of(const std::string& text, const std::string& needle) {
   std::istringstream lines(text);
@@ -109,7 +100,7 @@ class GplanCheck : public ::testing::Test {
   }
 
   CommandResult check(const std::string& arguments) const {
-    return run_gplan("check " + shell_quoted(scene_) + " " + arguments);
+    return run_gplan("check " + testing::shell_quoted(scene_) + " " + arguments);
   }
 
   ScratchFolder folder_;
@@ -118,11 +109,12 @@ class GplanCheck : public ::testing::Test {
 
 TEST_F(GplanCheck, WritesOneLinePerConfigurationAndASummary) {
   const std::string out = path("samples.txt");
-  const CommandResult run = check("--n 500 --seed 3 --out " + shell_quoted(out) + " --json");
+  const CommandResult run =
+      check("--n 500 --seed 3 --out " + testing::shell_quoted(out) + " --json");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   ASSERT_TRUE(fs::is_regular_file(out)) << run.output;
 
-  const std::string text = read_file(out);
+  const std::string text = testing::read_file(out);
   ASSERT_FALSE(text.empty());
   EXPECT_EQ(text.back(), '\n');
   const std::vector<std::string> lines = lines_of(text);
@@ -182,19 +174,19 @@ TEST_F(GplanCheck, SameSeedGivesTheSameFileAndAnotherSeedDoesNot) {
   const std::string a = path("a.txt"), b = path("b.txt"), c = path("c.txt");
   for (const auto& [out, seed] : {std::pair{a, 3}, std::pair{b, 3}, std::pair{c, 4}}) {
     const CommandResult run =
-        check("--n 500 --seed " + std::to_string(seed) + " --out " + shell_quoted(out));
+        check("--n 500 --seed " + std::to_string(seed) + " --out " + testing::shell_quoted(out));
     ASSERT_EQ(run.exit_code, 0) << run.output;
   }
-  const std::string first = read_file(a);
+  const std::string first = testing::read_file(a);
   EXPECT_EQ(lines_of(first).size(), 500u);
-  EXPECT_EQ(first, read_file(b));
-  EXPECT_NE(first, read_file(c));
+  EXPECT_EQ(first, testing::read_file(b));
+  EXPECT_NE(first, testing::read_file(c));
 }
 
 TEST_F(GplanCheck, BadSceneFailsNamingTheFileAndKey) {
   const std::string text = std::string(kScene) + "colour: red\n";
   const std::string bad = folder_.write("bad.yaml", text);
-  const CommandResult run = run_gplan("check " + shell_quoted(bad) + " --n 10");
+  const CommandResult run = run_gplan("check " + testing::shell_quoted(bad) + " --n 10");
   EXPECT_NE(run.exit_code, 0) << run.output;
   const std::string where = bad + ":" + std::to_string(line_of(text, "colour")) + ": colour: ";
   EXPECT_NE(run.output.find(where + "unknown key"), std::string::npos) << run.output;
@@ -202,7 +194,7 @@ TEST_F(GplanCheck, BadSceneFailsNamingTheFileAndKey) {
 
 TEST_F(GplanCheck, MissingSceneFailsNamingTheFile) {
   const std::string missing = path("nosuch.yaml");
-  const CommandResult run = run_gplan("check " + shell_quoted(missing));
+  const CommandResult run = run_gplan("check " + testing::shell_quoted(missing));
   EXPECT_NE(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find(missing), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("does not exist"), std::string::npos) << run.output;
@@ -213,7 +205,7 @@ TEST_F(GplanCheck, StartInCollisionFailsNamingTheScene) {
   // Half in, half out of the cube's face at x = -1.
   text.replace(text.find("[-1.8, 0, 0]"), 12, "[-1.0, 0, 0]");
   const std::string bad = folder_.write("bad.yaml", text);
-  const CommandResult run = run_gplan("check " + shell_quoted(bad) + " --n 10");
+  const CommandResult run = run_gplan("check " + testing::shell_quoted(bad) + " --n 10");
   EXPECT_NE(run.exit_code, 0) << run.output;
   const std::string where = bad + ":" + std::to_string(line_of(text, "[-1.0, 0, 0]")) + ": start: ";
   EXPECT_NE(run.output.find(where + "start configuration is in collision"), std::string::npos)
@@ -232,8 +224,8 @@ TEST_F(GplanCheck, PairsNameTheObstacleEachRowHits) {
   const std::string scene = folder_.write("pairs.yaml", text);
   const std::string rows = folder_.path() + "/rows.txt";
   const CommandResult run =
-      run_gplan("check " + shell_quoted(scene) + " --n 400 --backend cpu --out " +
-                shell_quoted(rows) + " --pairs");
+      run_gplan("check " + testing::shell_quoted(scene) + " --n 400 --backend cpu --out " +
+                testing::shell_quoted(rows) + " --pairs");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   std::ifstream in(rows);
   std::string line;
@@ -312,7 +304,7 @@ TEST_F(GplanCheck, GpuSettingsWithoutTheGpuAreAUsageError) {
 
 TEST_F(GplanCheck, MissingOrExtraSceneIsAUsageError) {
   for (const std::string& arguments :
-       {std::string("check"), "check " + shell_quoted(scene_) + " x"}) {
+       {std::string("check"), "check " + testing::shell_quoted(scene_) + " x"}) {
     const CommandResult run = run_gplan(arguments);
     EXPECT_EQ(run.exit_code, 2) << arguments << "\n" << run.output;
     EXPECT_NE(run.output.find("usage:"), std::string::npos) << arguments << "\n" << run.output;
@@ -329,7 +321,7 @@ TEST_F(GplanCheck, UnknownBackendNamesTheBackends) {
 TEST_F(GplanCheck, OutIntoMissingFolderFailsAndLeavesNothing) {
   const std::set<std::string> before = listing(folder_.path());
   const std::string out = path("missing/samples.txt");
-  const CommandResult run = check("--n 50 --out " + shell_quoted(out));
+  const CommandResult run = check("--n 50 --out " + testing::shell_quoted(out));
   EXPECT_NE(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("missing"), std::string::npos) << run.output;
   EXPECT_FALSE(fs::exists(path("missing")));
@@ -339,7 +331,7 @@ TEST_F(GplanCheck, OutIntoMissingFolderFailsAndLeavesNothing) {
 TEST_F(GplanCheck, OutIntoAFolderFailsAndLeavesItAlone) {
   fs::create_directories(path("results"));
   const std::set<std::string> before = listing(folder_.path());
-  const CommandResult run = check("--n 50 --out " + shell_quoted(path("results")));
+  const CommandResult run = check("--n 50 --out " + testing::shell_quoted(path("results")));
   EXPECT_NE(run.exit_code, 0) << run.output;
   EXPECT_TRUE(fs::is_directory(path("results")));
   EXPECT_TRUE(fs::is_empty(path("results")));
@@ -351,14 +343,14 @@ TEST_F(GplanCheck, FailedRunKeepsTheExistingOutput) {
   const std::string bad = folder_.write("bad.yaml", std::string(kScene) + "colour: red\n");
   const std::set<std::string> before = listing(folder_.path());
 
-  CommandResult run =
-      run_gplan("check " + shell_quoted(bad) + " --n 50 --out " + shell_quoted(out));
+  CommandResult run = run_gplan("check " + testing::shell_quoted(bad) + " --n 50 --out " +
+                                testing::shell_quoted(out));
   EXPECT_NE(run.exit_code, 0) << run.output;
-  EXPECT_EQ(read_file(out), "old content\nkept\n");
+  EXPECT_EQ(testing::read_file(out), "old content\nkept\n");
 
-  run = check("--n 50 --backend nosuch --out " + shell_quoted(out));
+  run = check("--n 50 --backend nosuch --out " + testing::shell_quoted(out));
   EXPECT_NE(run.exit_code, 0) << run.output;
-  EXPECT_EQ(read_file(out), "old content\nkept\n");
+  EXPECT_EQ(testing::read_file(out), "old content\nkept\n");
   EXPECT_EQ(listing(folder_.path()), before);
 }
 
@@ -367,9 +359,9 @@ TEST_F(GplanCheck, SuccessfulRunReplacesTheOutputWhole) {
   const std::string old(200000, 'x');
   const std::string out = folder_.write("samples.txt", old);
   const std::set<std::string> before = listing(folder_.path());
-  const CommandResult run = check("--n 20 --seed 3 --out " + shell_quoted(out));
+  const CommandResult run = check("--n 20 --seed 3 --out " + testing::shell_quoted(out));
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  const std::string text = read_file(out);
+  const std::string text = testing::read_file(out);
   EXPECT_EQ(text.find('x'), std::string::npos);
   EXPECT_EQ(lines_of(text).size(), 20u);
   EXPECT_EQ(text.back(), '\n');

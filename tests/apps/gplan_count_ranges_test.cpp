@@ -22,26 +22,38 @@ using testing::run_gplan;
 
 std::string piano() { return "'" + testing::project_root() + "/scenes/piano.yaml'"; }
 
-void expect_refused(const std::string& command, const std::string& option,
-                    const std::string& value, const std::string& range) {
+void expect_refused(const std::string& command, const std::string& option, const std::string& value,
+                    const std::string& range) {
   const CommandResult run = run_gplan(command + " " + piano() + " " + option + " " + value);
   EXPECT_EQ(run.exit_code, 2) << option << " " << value << "\n" << run.output;
   EXPECT_NE(run.output.find(option + " expects a whole number from " + range), std::string::npos)
-      << option << " " << value << "\n" << run.output;
+      << option << " " << value << "\n"
+      << run.output;
   EXPECT_EQ(run.output.find("Segmentation"), std::string::npos) << run.output;
 }
 
 // Values no count accepts: beyond 64 bits, negative, signed, fractional, not a number,
 // empty, spaced.
-const std::vector<std::string> kNeverCounts = {
-    "18446744073709551616", "99999999999999999999999", "-1", "-0", "+5", "1.9", "1e3", "x",
-    "''", "' 7'", "0x10"};
+const std::vector<std::string> kNeverCounts = {"18446744073709551616",
+                                               "99999999999999999999999",
+                                               "-1",
+                                               "-0",
+                                               "+5",
+                                               "1.9",
+                                               "1e3",
+                                               "x",
+                                               "''",
+                                               "' 7'",
+                                               "0x10"};
 
 TEST(GplanCountRanges, CheckRefusesEveryBadCountNamingOptionAndRange) {
   const std::vector<std::pair<std::string, std::string>> options = {
-      {"--n", "1 to 1000000000"},    {"--seed", "0 to 18446744073709551615"},
-      {"--repeat", "1 to 1000"},     {"--threads", "0 to 1024"},
-      {"--memory-cap-mb", "0 to 16777216"}, {"--small-batch", "0 to 1000000000"}};
+      {"--n", "1 to 1000000000"},
+      {"--seed", "0 to 18446744073709551615"},
+      {"--repeat", "1 to 1000"},
+      {"--threads", "0 to 1024"},
+      {"--memory-cap-mb", "0 to 16777216"},
+      {"--small-batch", "0 to 1000000000"}};
   for (const auto& [option, range] : options) {
     for (const std::string& value : kNeverCounts) {
       if (option == "--seed" && value == "-0") continue;
@@ -59,10 +71,10 @@ TEST(GplanCountRanges, CheckRefusesEveryBadCountNamingOptionAndRange) {
 }
 
 TEST(GplanCountRanges, PlanRefusesEveryBadCountNamingOptionAndRange) {
-  for (const auto& [option, range] : std::vector<std::pair<std::string, std::string>>{
-           {"--seed", "0 to 18446744073709551615"},
-           {"--threads", "0 to 1024"},
-           {"--milestones", "1 to 100000000"}}) {
+  for (const auto& [option, range] :
+       std::vector<std::pair<std::string, std::string>>{{"--seed", "0 to 18446744073709551615"},
+                                                        {"--threads", "0 to 1024"},
+                                                        {"--milestones", "1 to 100000000"}}) {
     for (const std::string& value : kNeverCounts) {
       if (option == "--seed" && value == "-0") continue;
       expect_refused("plan", option, value, range);
@@ -74,8 +86,8 @@ TEST(GplanCountRanges, PlanRefusesEveryBadCountNamingOptionAndRange) {
 }
 
 TEST(GplanCountRanges, FullSeedRangeIsAccepted) {
-  const CommandResult run = run_gplan("check " + piano() +
-                                      " --backend cpu --n 5 --seed 18446744073709551615 --json");
+  const CommandResult run =
+      run_gplan("check " + piano() + " --backend cpu --n 5 --seed 18446744073709551615 --json");
   EXPECT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("\"seed\":18446744073709551615"), std::string::npos) << run.output;
 }
@@ -97,7 +109,8 @@ TEST(GplanCountRanges, RoadmapBeyondMemoryIsRefusedWithTheEstimate) {
   const CommandResult run =
       run_gplan("plan " + piano() + " --backend cpu --milestones 100000000 --time-limit 1");
   EXPECT_EQ(run.exit_code, 2) << run.output;
-  EXPECT_NE(run.output.find("--milestones: the roadmap of 100000000 milestones needs about"), std::string::npos)
+  EXPECT_NE(run.output.find("--milestones: the roadmap of 100000000 milestones needs about"),
+            std::string::npos)
       << run.output;
   EXPECT_NE(run.output.find("give fewer milestones"), std::string::npos) << run.output;
 }

@@ -71,15 +71,6 @@ goal:
   base: {xyz: [1.8, 0, 0], quat_wxyz: [1, 0, 0, 0]}
 )";
 
-std::string shell_quoted(const std::string& text) { return "'" + text + "'"; }
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 std::set<std::string> listing(const std::string& folder) {
   std::set<std::string> names;
   for (const auto& entry : fs::directory_iterator(folder))
@@ -101,7 +92,7 @@ class GplanOutputs : public ::testing::Test {
   }
 
   CommandResult plan(const std::string& arguments) const {
-    return run_gplan("plan " + shell_quoted(scene_) + " --backend cpu " + arguments);
+    return run_gplan("plan " + testing::shell_quoted(scene_) + " --backend cpu " + arguments);
   }
 
   // Expects exit 2 with one line naming `option` and `needle`, and every file of the
@@ -112,14 +103,14 @@ class GplanOutputs : public ::testing::Test {
     const std::size_t entries = listing(folder_.path()).size();
     for (const std::string& name : listing(folder_.path())) {
       if (fs::is_regular_file(fs::symlink_status(path(name))))
-        before.emplace_back(name, read_file(path(name)));
+        before.emplace_back(name, testing::read_file(path(name)));
     }
     const CommandResult run = plan(arguments);
     EXPECT_EQ(run.exit_code, 2) << arguments << "\n" << run.output;
     EXPECT_NE(run.output.find("gplan: " + option + " "), std::string::npos) << run.output;
     EXPECT_NE(run.output.find(needle), std::string::npos) << run.output;
     EXPECT_EQ(run.output.find("scene       "), std::string::npos) << "no planning: " << run.output;
-    for (const auto& [name, text] : before) EXPECT_EQ(read_file(path(name)), text) << name;
+    for (const auto& [name, text] : before) EXPECT_EQ(testing::read_file(path(name)), text) << name;
     EXPECT_EQ(listing(folder_.path()).size(), entries) << "nothing added";
   }
 
@@ -129,7 +120,7 @@ class GplanOutputs : public ::testing::Test {
 
 TEST_F(GplanOutputs, APathIsWrittenAndReportedByOption) {
   const std::string out = path("path.yaml");
-  const CommandResult run = plan("--out " + shell_quoted(out));
+  const CommandResult run = plan("--out " + testing::shell_quoted(out));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("wrote       --out " + out), std::string::npos) << run.output;
   EXPECT_EQ(YAML::LoadFile(out)["entries"][0].as<std::string>(), "turn");
@@ -149,9 +140,10 @@ TEST_F(GplanOutputs, ADeviceIsRefusedAndStaysADevice) {
 
 TEST_F(GplanOutputs, AFifoAndAFolderAreRefused) {
   ASSERT_EQ(mkfifo(path("pipe").c_str(), 0644), 0);
-  expect_refused("--picture " + shell_quoted(path("pipe")), "--picture", "is a FIFO");
+  expect_refused("--picture " + testing::shell_quoted(path("pipe")), "--picture", "is a FIFO");
   EXPECT_EQ(fs::status(path("pipe")).type(), fs::file_type::fifo);
-  expect_refused("--save-roadmap " + shell_quoted(folder_.path()), "--save-roadmap", "is a folder");
+  expect_refused("--save-roadmap " + testing::shell_quoted(folder_.path()), "--save-roadmap",
+                 "is a folder");
 }
 
 TEST_F(GplanOutputs, AnEmptyNameIsRefused) {
@@ -159,35 +151,38 @@ TEST_F(GplanOutputs, AnEmptyNameIsRefused) {
 }
 
 TEST_F(GplanOutputs, TheSceneItsMeshesAndItsUrdfAreNeverOverwritten) {
-  expect_refused("--out " + shell_quoted(scene_), "--out", "would overwrite the scene file");
+  expect_refused("--out " + testing::shell_quoted(scene_), "--out",
+                 "would overwrite the scene file");
   // The same files by other names: another spelling, a hard link.
-  expect_refused("--picture " + shell_quoted(folder_.path() + "/./box.obj"), "--picture",
+  expect_refused("--picture " + testing::shell_quoted(folder_.path() + "/./box.obj"), "--picture",
                  "would overwrite a file the scene loads");
-  expect_refused("--save-roadmap " + shell_quoted(path("arm.urdf")), "--save-roadmap",
+  expect_refused("--save-roadmap " + testing::shell_quoted(path("arm.urdf")), "--save-roadmap",
                  "would overwrite a file the scene loads");
-  expect_refused("--out " + shell_quoted(path("hand.obj")), "--out",
+  expect_refused("--out " + testing::shell_quoted(path("hand.obj")), "--out",
                  "would overwrite a file the scene loads");
   ASSERT_EQ(link(path("hand.obj").c_str(), path("hard.obj").c_str()), 0);
-  expect_refused("--out " + shell_quoted(path("hard.obj")), "--out",
+  expect_refused("--out " + testing::shell_quoted(path("hard.obj")), "--out",
                  "would overwrite a file the scene loads");
 }
 
 TEST_F(GplanOutputs, TheLoadedRoadmapIsNeverOverwritten) {
   const std::string roadmap = path("roadmap.bin");
-  ASSERT_EQ(plan("--save-roadmap " + shell_quoted(roadmap)).exit_code, 0);
-  expect_refused(
-      "--load-roadmap " + shell_quoted(roadmap) + " --save-roadmap " + shell_quoted(roadmap),
-      "--save-roadmap", "would overwrite the --load-roadmap file");
-  expect_refused("--load-roadmap " + shell_quoted(roadmap) + " --out " + shell_quoted(roadmap),
+  ASSERT_EQ(plan("--save-roadmap " + testing::shell_quoted(roadmap)).exit_code, 0);
+  expect_refused("--load-roadmap " + testing::shell_quoted(roadmap) + " --save-roadmap " +
+                     testing::shell_quoted(roadmap),
+                 "--save-roadmap", "would overwrite the --load-roadmap file");
+  expect_refused("--load-roadmap " + testing::shell_quoted(roadmap) + " --out " +
+                     testing::shell_quoted(roadmap),
                  "--out", "would overwrite the --load-roadmap file");
 }
 
 TEST_F(GplanOutputs, TwoOutputsOnOnePathAreRefused) {
-  expect_refused("--out " + shell_quoted(path("same")) + " --picture " + shell_quoted(path("same")),
+  expect_refused("--out " + testing::shell_quoted(path("same")) + " --picture " +
+                     testing::shell_quoted(path("same")),
                  "--picture", "is also --out");
   folder_.write("existing", "kept\n");
-  expect_refused("--out " + shell_quoted(path("existing")) + " --save-roadmap " +
-                     shell_quoted(folder_.path() + "//existing"),
+  expect_refused("--out " + testing::shell_quoted(path("existing")) + " --save-roadmap " +
+                     testing::shell_quoted(folder_.path() + "//existing"),
                  "--save-roadmap", "is also --out");
 }
 
@@ -196,7 +191,7 @@ TEST_F(GplanOutputs, ASymbolicLinkIsWrittenThrough) {
   const std::string target = folder_.write("real/path.yaml", "old\n");
   ASSERT_EQ(chmod(target.c_str(), 0640), 0);
   fs::create_symlink("real/path.yaml", path("link.yaml"));
-  const CommandResult run = plan("--out " + shell_quoted(path("link.yaml")));
+  const CommandResult run = plan("--out " + testing::shell_quoted(path("link.yaml")));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_TRUE(fs::is_symlink(path("link.yaml"))) << "the link is kept";
   EXPECT_EQ(fs::read_symlink(path("link.yaml")), "real/path.yaml");
@@ -209,7 +204,7 @@ TEST_F(GplanOutputs, ASymbolicLinkIsWrittenThrough) {
 
 TEST_F(GplanOutputs, ADanglingLinkIntoAMissingFolderIsRefused) {
   fs::create_symlink("missing/folder/path.yaml", path("dangling.yaml"));
-  expect_refused("--out " + shell_quoted(path("dangling.yaml")), "--out",
+  expect_refused("--out " + testing::shell_quoted(path("dangling.yaml")), "--out",
                  "does not exist (the symbolic link leads to");
   EXPECT_TRUE(fs::is_symlink(path("dangling.yaml")));
 }
@@ -217,10 +212,11 @@ TEST_F(GplanOutputs, ADanglingLinkIntoAMissingFolderIsRefused) {
 TEST_F(GplanOutputs, ALinkLoopAndAnOverlongNameAreClearErrors) {
   fs::create_symlink("loop2", path("loop1"));
   fs::create_symlink("loop1", path("loop2"));
-  expect_refused("--out " + shell_quoted(path("loop1")), "--out", "too many symbolic links");
-  expect_refused("--out " + shell_quoted(path(std::string(300, 'x'))), "--out",
+  expect_refused("--out " + testing::shell_quoted(path("loop1")), "--out",
+                 "too many symbolic links");
+  expect_refused("--out " + testing::shell_quoted(path(std::string(300, 'x'))), "--out",
                  "the name is too long");
-  const CommandResult run = plan("--out " + shell_quoted(path(std::string(300, 'x'))));
+  const CommandResult run = plan("--out " + testing::shell_quoted(path(std::string(300, 'x'))));
   EXPECT_LT(run.output.size(), 600u) << "a long name is shortened in the message";
 }
 
@@ -228,7 +224,7 @@ TEST_F(GplanOutputs, AReadOnlyFolderIsRefusedBeforePlanning) {
   if (geteuid() == 0) GTEST_SKIP() << "root writes into read-only folders";
   fs::create_directory(path("locked"));
   ASSERT_EQ(chmod(path("locked").c_str(), 0555), 0);
-  expect_refused("--out " + shell_quoted(path("locked/path.yaml")), "--out",
+  expect_refused("--out " + testing::shell_quoted(path("locked/path.yaml")), "--out",
                  "cannot create files in folder");
   chmod(path("locked").c_str(), 0755);
 }
@@ -236,15 +232,15 @@ TEST_F(GplanOutputs, AReadOnlyFolderIsRefusedBeforePlanning) {
 TEST_F(GplanOutputs, NoPathSaysTheOutputsWereLeftAsTheyWere) {
   const std::string walled = folder_.write("walled.yaml", kWalledScene);
   const std::string out = folder_.write("path.yaml", "old\n");
-  const CommandResult run =
-      run_gplan("plan " + shell_quoted(walled) + " --backend cpu --time-limit 0.2 --out " +
-                shell_quoted(out) + " --picture " + shell_quoted(path("path.svg")));
+  const CommandResult run = run_gplan(
+      "plan " + testing::shell_quoted(walled) + " --backend cpu --time-limit 0.2 --out " +
+      testing::shell_quoted(out) + " --picture " + testing::shell_quoted(path("path.svg")));
   EXPECT_EQ(run.exit_code, 4) << run.output;
   EXPECT_NE(run.output.find("gplan: no path, so nothing written to --out " + out + ", --picture " +
                             path("path.svg")),
             std::string::npos)
       << run.output;
-  EXPECT_EQ(read_file(out), "old\n");
+  EXPECT_EQ(testing::read_file(out), "old\n");
   EXPECT_FALSE(fs::exists(path("path.svg")));
 }
 
@@ -291,7 +287,7 @@ void expect_clean_interruption(const std::vector<std::string>& arguments, int si
     waitpid(pid, &status, 0);
     FAIL() << "still running 10 s after the signal";
   }
-  const std::string output = read_file(log);
+  const std::string output = testing::read_file(log);
   EXPECT_LT(seconds, 1.0) << output;
   ASSERT_TRUE(WIFEXITED(status)) << "ended by the signal itself, not cleanly: " << output;
   EXPECT_EQ(WEXITSTATUS(status), 128 + signal_number) << output;

@@ -102,8 +102,7 @@ TEST(GplanPlan, PictureShowsObstaclesRobotAndPath) {
   const CommandResult run = run_gplan("plan '" + scene_path("pr2_base_arm.yaml") +
                                       "' --backend cpu --picture '" + svg + "'");
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  std::ifstream in(svg);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = testing::read_file(svg);
   EXPECT_EQ(text.rfind("<svg", 0), 0u);
   EXPECT_NE(text.find("</svg>"), std::string::npos);
   std::size_t polygons = 0;

@@ -36,9 +36,8 @@ void expect_ends_within_the_limit(const std::string& file, const std::string& ba
   const double bound = kLimit + std::max(0.05 * kLimit, 0.1);
   for (const std::string extra : {"", " --milestones 10000000"}) {
     const auto started = std::chrono::steady_clock::now();
-    const CommandResult run =
-        run_gplan("plan '" + scene_file + "' --backend " + backend + " --time-limit 1 --json" +
-                  extra);
+    const CommandResult run = run_gplan("plan '" + scene_file + "' --backend " + backend +
+                                        " --time-limit 1 --json" + extra);
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     const std::string what = scene_file + " --backend " + backend + extra;
@@ -47,8 +46,8 @@ void expect_ends_within_the_limit(const std::string& file, const std::string& ba
     const double planning = json_number(run.output, "seconds");
     ASSERT_GE(setup, 0) << what << "\n" << run.output;
     EXPECT_LE(planning, bound) << what << "\n" << run.output;
-    EXPECT_LE(wall - setup, bound)
-        << what << ": " << wall << " s in all, " << setup << " s setup\n" << run.output;
+    EXPECT_LE(wall - setup, bound) << what << ": " << wall << " s in all, " << setup << " s setup\n"
+                                   << run.output;
   }
 }
 

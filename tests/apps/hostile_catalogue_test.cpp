@@ -199,8 +199,7 @@ TEST_P(HostileCatalogue, RefusedCleanlyOrRunInTime) {
     const std::string name = item.first.as<std::string>();
     std::string text = name == "stdout" ? run.out : name == "stderr" ? run.err : "";
     if (name != "stdout" && name != "stderr") {
-      std::ifstream in(fs::path(folder) / name, std::ios::binary);
-      text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+      text = testing::read_file((fs::path(folder) / name).string());
     }
     for (const YAML::Node& fragment : item.second) {
       EXPECT_EQ(text.find(fragment.as<std::string>()), std::string::npos)

@@ -23,8 +23,7 @@ std::size_t replay(const std::string& target,
   std::size_t count = 0;
   if (!fs::is_directory(folder)) return 0;
   for (const auto& entry : fs::directory_iterator(folder)) {
-    std::ifstream in(entry.path(), std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string bytes = testing::read_file(entry.path().string());
     SCOPED_TRACE(entry.path().string());
     run(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
     ++count;

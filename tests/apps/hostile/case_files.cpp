@@ -134,7 +134,8 @@ std::string edited_fixture(const YAML::Node& spec, const std::string& folder) {
     std::size_t at = text.find(from);
     if (at == std::string::npos)
       throw std::runtime_error("'" + from + "' is not in " + spec["from"].as<std::string>());
-    for (; at != std::string::npos; at = text.find(from, at + to.size())) text.replace(at, from.size(), to);
+    for (; at != std::string::npos; at = text.find(from, at + to.size()))
+      text.replace(at, from.size(), to);
   }
   if (spec["prepend"]) text = build_text(spec["prepend"], folder) + text;
   if (spec["append"]) text += build_text(spec["append"], folder);
@@ -145,8 +146,9 @@ std::string edited_fixture(const YAML::Node& spec, const std::string& folder) {
 std::string urdf_chain(int links) {
   std::string text = "<?xml version=\"1.0\"?>\n<robot name=\"chain\">\n";
   for (int i = 0; i < links; ++i) {
-    text += "  <link name=\"l" + std::to_string(i) +
-            "\"><collision><geometry><box size=\"0.01 0.01 0.01\"/></geometry></collision></link>\n";
+    text +=
+        "  <link name=\"l" + std::to_string(i) +
+        "\"><collision><geometry><box size=\"0.01 0.01 0.01\"/></geometry></collision></link>\n";
   }
   for (int i = 1; i < links; ++i) {
     text += "  <joint name=\"j" + std::to_string(i) + "\" type=\"revolute\"><parent link=\"l" +
@@ -222,7 +224,8 @@ void create_file(const std::string& folder, const std::string& name, const YAML:
     throw std::runtime_error("no way to create " + name + " given");
   }
   if (spec.IsMap() && spec["mode"]) {
-    fs::permissions(path, static_cast<fs::perms>(std::stoul(spec["mode"].as<std::string>(), nullptr, 8)));
+    fs::permissions(path,
+                    static_cast<fs::perms>(std::stoul(spec["mode"].as<std::string>(), nullptr, 8)));
   }
 }
 
@@ -234,7 +237,8 @@ EntryState entry_state(const std::string& path) {
     return state;
   }
   state.mode = info.st_mode & 07777;
-  state.mtime_ns = static_cast<std::int64_t>(info.st_mtim.tv_sec) * 1000000000 + info.st_mtim.tv_nsec;
+  state.mtime_ns =
+      static_cast<std::int64_t>(info.st_mtim.tv_sec) * 1000000000 + info.st_mtim.tv_nsec;
   if (S_ISREG(info.st_mode)) {
     state.type = 'f';
     state.size = static_cast<std::uintmax_t>(info.st_size);
@@ -263,8 +267,9 @@ EntryState entry_state(const std::string& path) {
 std::map<std::string, EntryState> snapshot(const std::string& folder) {
   std::map<std::string, EntryState> entries;
   std::error_code error;
-  for (fs::recursive_directory_iterator it(folder, fs::directory_options::skip_permission_denied,
-                                           error), end;
+  for (fs::recursive_directory_iterator
+           it(folder, fs::directory_options::skip_permission_denied, error),
+       end;
        it != end; it.increment(error)) {
     if (error) break;
     entries[it->path().lexically_relative(folder).string()] = entry_state(it->path().string());

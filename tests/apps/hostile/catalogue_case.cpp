@@ -15,13 +15,13 @@ std::vector<std::string> strings(const YAML::Node& node) {
   return out;
 }
 
-const std::set<std::string> kKinds = {"files destroyed", "crashes",      "hangs/memory",
-                                      "time limit",      "late or misleading errors",
-                                      "silently accepted"};
+const std::set<std::string> kKinds = {
+    "files destroyed",           "crashes",          "hangs/memory", "time limit",
+    "late or misleading errors", "silently accepted"};
 
-const std::set<std::string> kKeys = {"name",     "class",   "files",   "args",  "exit",
-                                     "message",  "advice",  "outputs", "changes", "limit_s",
-                                     "max_s",    "non_root", "note", "absent", "output_lacks", "output_yaml"};
+const std::set<std::string> kKeys = {
+    "name",    "class",   "files", "args",     "exit", "message", "advice",       "outputs",
+    "changes", "limit_s", "max_s", "non_root", "note", "absent",  "output_lacks", "output_yaml"};
 
 CatalogueCase parse_case(const YAML::Node& entry) {
   CatalogueCase c;
@@ -48,7 +48,8 @@ CatalogueCase parse_case(const YAML::Node& entry) {
   // Refusals say what to change; a legitimate run (0, 4) need not.
   const bool refused = c.exit_codes.size() == 1 && c.exit_codes[0] == 2;
   c.advice = entry["advice"] ? entry["advice"].as<bool>() : refused;
-  if (refused && c.message.empty()) throw std::runtime_error("a refusal must name its file or option");
+  if (refused && c.message.empty())
+    throw std::runtime_error("a refusal must name its file or option");
   c.absent = strings(entry["absent"]);
   if (entry["output_lacks"]) c.output_lacks = entry["output_lacks"];
   c.output_yaml = strings(entry["output_yaml"]);

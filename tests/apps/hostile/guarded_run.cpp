@@ -74,8 +74,7 @@ GuardedRun run_gplan_guarded(const std::vector<std::string>& arguments, const st
   int status = 0;
   for (;;) {
     const pid_t done = waitpid(child, &status, WNOHANG);
-    run.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (done == child) break;
     if (run.seconds > limit_s) {
       run.hung = true;

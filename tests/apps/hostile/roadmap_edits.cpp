@@ -11,6 +11,7 @@
 
 #include "gplanner/planner/planning/roadmap.h"
 #include "gplanner/planner/scene/scene.h"
+#include "test_support.h"
 
 namespace gplanner::hostile {
 namespace {
@@ -44,7 +45,9 @@ void set(std::string* bytes, std::size_t at, T value) {
   std::memcpy(&(*bytes)[at], &value, sizeof(T));
 }
 
-double number(const YAML::Node& value) { return std::strtod(value.as<std::string>().c_str(), nullptr); }
+double number(const YAML::Node& value) {
+  return std::strtod(value.as<std::string>().c_str(), nullptr);
+}
 
 std::string saved_roadmap(const Scene& scene, const std::string& folder) {
   const int w = scene.space.width();
@@ -61,8 +64,7 @@ std::string saved_roadmap(const Scene& scene, const std::string& folder) {
   roadmap.add_edge(2, 3, 1.5f);
   const std::string path = folder + "/.roadmap-being-made";
   save_roadmap(roadmap, scene, path);
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes = testing::read_file(path);
   std::filesystem::remove(path);
   return bytes;
 }
@@ -99,9 +101,11 @@ std::string roadmap_file(const std::string& folder, const YAML::Node& spec) {
     } else if (kind == "width") {
       set<std::int32_t>(&bytes, kWidthAt, static_cast<std::int32_t>(number(value)));
     } else if (kind == "vertex_count") {
-      set<std::uint64_t>(&bytes, kVertexCountAt, std::strtoull(value.as<std::string>().c_str(), nullptr, 10));
+      set<std::uint64_t>(&bytes, kVertexCountAt,
+                         std::strtoull(value.as<std::string>().c_str(), nullptr, 10));
     } else if (kind == "edge_count") {
-      set<std::uint64_t>(&bytes, kEdgeCountAt, std::strtoull(value.as<std::string>().c_str(), nullptr, 10));
+      set<std::uint64_t>(&bytes, kEdgeCountAt,
+                         std::strtoull(value.as<std::string>().c_str(), nullptr, 10));
     } else if (kind == "vertex_value") {
       set<float>(&bytes, kVerticesAt, static_cast<float>(number(value)));
     } else if (kind == "edge_a") {

@@ -17,13 +17,6 @@
 namespace gplanner {
 namespace {
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 std::size_t files_in(const std::string& folder) {
   std::size_t count = 0;
   for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(folder)) ++count;
@@ -34,7 +27,7 @@ TEST(AtomicFile, WritesTheWholeContent) {
   testing::ScratchFolder scratch;
   const std::string path = scratch.path() + "/out.txt";
   write_file_atomically(path, [](std::ostream& out) { out << "first\nsecond\n"; });
-  EXPECT_EQ(read_file(path), "first\nsecond\n");
+  EXPECT_EQ(testing::read_file(path), "first\nsecond\n");
   EXPECT_EQ(files_in(scratch.path()), 1u) << "no temporary file is left behind";
 }
 
@@ -47,7 +40,7 @@ TEST(AtomicFile, AFailedWriteLeavesThePreviousContent) {
                                        throw std::runtime_error("the writer failed");
                                      }),
                std::runtime_error);
-  EXPECT_EQ(read_file(path), "kept\n");
+  EXPECT_EQ(testing::read_file(path), "kept\n");
   EXPECT_EQ(files_in(scratch.path()), 1u) << "the temporary file is removed";
 }
 
@@ -81,7 +74,7 @@ TEST(AtomicFile, WritesThroughASymbolicLinkKeepingPermissionBits) {
   std::filesystem::create_symlink("target.txt", link);
   write_file_atomically(link, [](std::ostream& out) { out << "new\n"; });
   EXPECT_TRUE(std::filesystem::is_symlink(link));
-  EXPECT_EQ(read_file(target), "new\n");
+  EXPECT_EQ(testing::read_file(target), "new\n");
   struct stat status {};
   ASSERT_EQ(stat(target.c_str(), &status), 0);
   EXPECT_EQ(status.st_mode & 07777, 0600u);

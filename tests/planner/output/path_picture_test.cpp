@@ -24,10 +24,7 @@ TEST(PathPicture, MarkupInTheSceneNameIsEscaped) {
   testing::ScratchFolder scratch;
   const std::string file = scratch.path() + "/path.svg";
   write_path_picture(file, scene, path);
-  std::ifstream in(file);
-  std::ostringstream text;
-  text << in.rdbuf();
-  const std::string svg = text.str();
+  const std::string svg = testing::read_file(file);
   EXPECT_EQ(svg.find("<script"), std::string::npos) << "no raw <script> element";
   EXPECT_NE(svg.find("&lt;script&gt;alert(&quot;x&quot;)&lt;/script&gt; &amp; &lt;b"),
             std::string::npos);

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <limits>
 #include <iterator>
+#include <limits>
 #include <random>
 
 #include "gplanner/planner/scene/input_error.h"
@@ -35,11 +35,6 @@ Roadmap random_roadmap(const Scene& scene, std::size_t n, unsigned seed) {
                      static_cast<EdgeState>(e % 3));
   }
   return roadmap;
-}
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 void write_bytes(const std::string& path, const std::string& bytes) {
@@ -117,7 +112,7 @@ TEST(Roadmap, DamagedFilesAreRefusedNamingTheFile) {
   testing::ScratchFolder scratch;
   const std::string path = scratch.path() + "/piano.roadmap";
   save_roadmap(random_roadmap(scene, 100, 2), scene, path);
-  const std::string good = read_bytes(path);
+  const std::string good = testing::read_file(path);
 
   const std::string truncated = scratch.path() + "/truncated.roadmap";
   write_bytes(truncated, good.substr(0, good.size() / 2));
@@ -159,7 +154,7 @@ TEST(Roadmap, ContentWithAValidChecksumIsStillChecked) {
   const std::size_t n = 20;
   const Roadmap roadmap = random_roadmap(scene, n, 5);
   save_roadmap(roadmap, scene, path);
-  const std::string good = read_bytes(path);
+  const std::string good = testing::read_file(path);
   ASSERT_EQ(with_checksum(good), good);
   const std::size_t width = scene.space.width();
   const std::size_t first_edge = kHeaderBytes + n * width * sizeof(float);
@@ -206,11 +201,11 @@ TEST(Roadmap, FailedSaveKeepsTheOldFile) {
   testing::ScratchFolder scratch;
   const std::string path = scratch.path() + "/piano.roadmap";
   save_roadmap(random_roadmap(scene, 30, 3), scene, path);
-  const std::string before = read_bytes(path);
+  const std::string before = testing::read_file(path);
   EXPECT_THROW(save_roadmap(random_roadmap(scene, 30, 4), scene,
                             scratch.path() + "/no/such/folder/x.roadmap"),
                std::runtime_error);
-  EXPECT_EQ(read_bytes(path), before);
+  EXPECT_EQ(testing::read_file(path), before);
 }
 
 }  // namespace

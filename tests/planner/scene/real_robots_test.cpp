@@ -104,10 +104,7 @@ NamePair named(const RobotModel& robot, int a, int b) {
 // "Adjacent", "Default", "Never", ...), both links carrying geometry in `robot`.
 std::set<NamePair> srdf_pairs(const std::string& srdf, const std::string& reason,
                               const RobotModel& robot) {
-  std::ifstream in(srdf);
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string xml = text.str();
+  const std::string xml = testing::read_file(srdf);
   const std::regex pair("<disable_collisions link1=\"([^\"]+)\" link2=\"([^\"]+)\" reason=\"" +
                         reason + "\"");
   std::set<NamePair> pairs;

@@ -7,15 +7,10 @@
 
 namespace gplan {
 
-namespace {
-
-// An argument as shown in a message: at most 40 characters of it.
 std::string excerpt(const std::string& text) {
   if (text.size() <= 40) return text;
   return text.substr(0, 40) + "... (" + std::to_string(text.size()) + " bytes)";
 }
-
-}  // namespace
 
 CommandLine::CommandLine(int argc, char** argv, int first, const std::set<std::string>& options,
                          const std::set<std::string>& flags) {
@@ -70,9 +65,8 @@ unsigned long long CommandLine::count(const std::string& name, unsigned long lon
       std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
   if (digits) value = std::strtoull(text.c_str(), nullptr, 10);
   if (!digits || errno != 0 || value < low || value > high) {
-    const std::string shown = text.size() > 40 ? text.substr(0, 40) + "..." : text;
     throw UsageError("--" + name + " expects a whole number from " + std::to_string(low) + " to " +
-                     std::to_string(high) + ", not '" + shown + "'");
+                     std::to_string(high) + ", not '" + excerpt(text) + "'");
   }
   return value;
 }

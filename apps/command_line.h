@@ -38,4 +38,8 @@ class CommandLine {
   std::set<std::string> flags_;
 };
 
+// An argument as shown in a message: its first 40 characters, and its length where it
+// is longer.
+std::string excerpt(const std::string& text);
+
 }  // namespace gplan

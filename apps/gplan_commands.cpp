@@ -72,8 +72,7 @@ int run_command(int argc, char** argv) {
   if (command == "check") return run_check(argc, argv);
   if (command == "plan") return run_plan(argc, argv);
   if (command == "info") return run_info();
-  const std::string shown = command.size() > 40 ? command.substr(0, 40) + "..." : command;
-  throw UsageError("unknown command '" + shown + "'; use check, plan or info");
+  throw UsageError("unknown command '" + excerpt(command) + "'; use check, plan or info");
 }
 
 }  // namespace gplan

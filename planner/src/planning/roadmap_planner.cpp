@@ -122,16 +122,16 @@ bool RoadmapPlanner::check_loaded_milestones(PlanResult* result) {
 
 double RoadmapPlanner::elapsed() const { return seconds_since(started_); }
 
+const char* RoadmapPlanner::why_stop() const {
+  if (options_.should_stop && options_.should_stop()) return "stopped";
+  if (elapsed() >= options_.time_limit_s) return "time limit";
+  return nullptr;
+}
+
 bool RoadmapPlanner::out_of_time(PlanResult* result) const {
-  if (options_.should_stop && options_.should_stop()) {
-    result->stop_reason = "stopped";
-    return true;
-  }
-  if (elapsed() >= options_.time_limit_s) {
-    result->stop_reason = "time limit";
-    return true;
-  }
-  return false;
+  const char* why = why_stop();
+  if (why != nullptr) result->stop_reason = why;
+  return why != nullptr;
 }
 
 void RoadmapPlanner::report(const char* stage, const PlanResult& result) const {
@@ -344,9 +344,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   PlanResult result;
   local_.reset_stats();
   const int width = scene_.space.width();
-  stop_ = [this] {
-    return (options_.should_stop && options_.should_stop()) || elapsed() >= options_.time_limit_s;
-  };
+  stop_ = [this] { return why_stop() != nullptr; };
   local_.set_stop(stop_);
   neighbors_->set_stop(stop_);  // taken back before returning: the finder may outlive us
   const bool loaded_checked = check_loaded_milestones(&result);

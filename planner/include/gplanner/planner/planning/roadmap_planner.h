@@ -83,6 +83,9 @@ class RoadmapPlanner {
   void add_next_paths(const GoalDistances& to_goal, std::uint32_t s, std::uint32_t g,
                       std::size_t shortest_vertices, std::vector<std::uint32_t>* batch,
                       PlanResult* result);
+  // Why planning must stop now ("stopped": should_stop; "time limit"), or null.
+  const char* why_stop() const;
+  // Whether it must, the reason then put in result->stop_reason.
   bool out_of_time(PlanResult* result) const;
   void report(const char* stage, const PlanResult& result) const;
   double elapsed() const;

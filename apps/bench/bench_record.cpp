@@ -1,0 +1,165 @@
+#include "bench_record.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+namespace gplan {
+namespace {
+
+std::string quoted(const std::string& field) {
+  if (field.find_first_of(",\"\r\n") == std::string::npos) return field;
+  std::string out = "\"";
+  for (char c : field) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::string number(double value) {
+  if (!std::isfinite(value)) return "";
+  std::ostringstream text;
+  text << std::setprecision(9) << value;
+  return text.str();
+}
+
+std::string count(long long value) { return value < 0 ? "" : std::to_string(value); }
+
+// Splits one CSV record; `in` supplies continuation lines of quoted fields.
+std::vector<std::string> split_csv(std::string line, std::istream& in, int* line_number) {
+  std::vector<std::string> fields(1);
+  bool in_quotes = false;
+  for (std::size_t i = 0;; ++i) {
+    if (i == line.size()) {
+      if (!in_quotes) break;
+      std::string next;
+      if (!std::getline(in, next)) throw std::runtime_error("a quoted field is not closed");
+      ++*line_number;
+      line += "\n" + next;
+    }
+    const char c = line[i];
+    if (in_quotes) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        fields.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        in_quotes = false;
+      } else {
+        fields.back() += c;
+      }
+    } else if (c == '"') {
+      in_quotes = true;
+    } else if (c == ',') {
+      fields.emplace_back();
+    } else if (c != '\r') {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+double parse_number(const std::string& field) {
+  if (field.empty()) return kNotMeasured;
+  char* end = nullptr;
+  const double value = std::strtod(field.c_str(), &end);
+  if (end == field.c_str() || *end != '\0') throw std::runtime_error("'" + field + "' is no number");
+  return value;
+}
+
+long long parse_count(const std::string& field) {
+  if (field.empty()) return -1;
+  if (field.find_first_not_of("0123456789") != std::string::npos || field.size() > 18)
+    throw std::runtime_error("'" + field + "' is no count");
+  return std::stoll(field);
+}
+
+}  // namespace
+
+const std::vector<std::string>& bench_csv_columns() {
+  static const std::vector<std::string> columns = {
+      "experiment", "scene",  "planner",       "checker",         "run",
+      "seed",       "status", "solved",        "time_s",          "simplify_time_s",
+      "length",     "simplified_length",       "checks",          "graph_states",
+      "memory_mb",  "path_check",              "work",            "collisions",
+      "note"};
+  return columns;
+}
+
+void write_bench_csv_header(std::ostream& out) {
+  const auto& columns = bench_csv_columns();
+  for (std::size_t i = 0; i < columns.size(); ++i) out << (i ? "," : "") << columns[i];
+  out << "\n";
+}
+
+void write_bench_csv_line(std::ostream& out, const BenchRecord& r) {
+  out << quoted(r.experiment) << ',' << quoted(r.scene) << ',' << quoted(r.planner) << ','
+      << quoted(r.checker) << ',' << r.run << ',' << r.seed << ',' << quoted(r.status) << ','
+      << (r.solved ? 1 : 0) << ',' << number(r.time_s) << ',' << number(r.simplify_time_s) << ','
+      << number(r.length) << ',' << number(r.simplified_length) << ',' << count(r.checks) << ','
+      << count(r.graph_states) << ',' << number(r.memory_mb) << ',' << quoted(r.path_check)
+      << ',' << count(r.work) << ',' << count(r.collisions) << ',' << quoted(r.note) << "\n";
+}
+
+std::vector<BenchRecord> read_bench_csv(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(file + ": cannot be read");
+  const auto& columns = bench_csv_columns();
+  std::vector<BenchRecord> records;
+  std::string line;
+  int line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    const int first_line = line_number;
+    std::vector<std::string> f;
+    try {
+      f = split_csv(line, in, &line_number);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(file + ":" + std::to_string(first_line) + ": " + e.what());
+    }
+    if (first_line == 1) {
+      if (f != columns)
+        throw std::runtime_error(file + ":1: not a gplan bench CSV (the header differs)");
+      continue;
+    }
+    if (f.size() == 1 && f[0].empty()) continue;
+    if (f.size() != columns.size()) {
+      throw std::runtime_error(file + ":" + std::to_string(first_line) + ": " +
+                               std::to_string(f.size()) + " fields, not " +
+                               std::to_string(columns.size()));
+    }
+    std::size_t column = 0;
+    try {
+      BenchRecord r;
+      r.experiment = f[column++];
+      r.scene = f[column++];
+      r.planner = f[column++];
+      r.checker = f[column++];
+      r.run = static_cast<int>(parse_count(f[column++]));
+      r.seed = static_cast<std::uint64_t>(parse_count(f[column++]));
+      r.status = f[column++];
+      const std::string solved = f[column++];
+      if (solved != "0" && solved != "1") throw std::runtime_error("'" + solved + "' is not 0 or 1");
+      r.solved = solved == "1";
+      r.time_s = parse_number(f[column++]);
+      r.simplify_time_s = parse_number(f[column++]);
+      r.length = parse_number(f[column++]);
+      r.simplified_length = parse_number(f[column++]);
+      r.checks = parse_count(f[column++]);
+      r.graph_states = parse_count(f[column++]);
+      r.memory_mb = parse_number(f[column++]);
+      r.path_check = f[column++];
+      r.work = parse_count(f[column++]);
+      r.collisions = parse_count(f[column++]);
+      r.note = f[column++];
+      records.push_back(r);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(file + ":" + std::to_string(first_line) + ": column " +
+                               columns[column - 1] + ": " + e.what());
+    }
+  }
+  return records;
+}
+
+}  // namespace gplan

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <string>
 
+#include "bench_command.h"
 #include "check_command.h"
 #include "command_line.h"
 #include "gplanner/common/gpu_device.h"
@@ -35,13 +36,26 @@ const char* const kUsage =
     "      settings) and print the time per stage; --out writes the path (YAML),\n"
     "      --picture a drawing of it (SVG); exit 4\n"
     "      when no path is found within the time limit\n"
+    "  gplan bench CONFIG [-o DIR] [--jobs N] [--baseline FILE] [--save-baseline FILE]\n"
+    "                    [--report DIR] [--no-plots]\n"
+    "      regression runs and the seed's tables as a configuration (config/bench/*.yaml)\n"
+    "      says: every run in a worker process with its own seed, progress on stderr;\n"
+    "      writes DIR (default gplan-bench-NAME-DATE-TIME; a new or empty folder):\n"
+    "      results.csv, summary.txt (also printed), ompl/SCENE.log (OMPL's benchmark log,\n"
+    "      for ompl_benchmark_statistics), plots/ (PNG and SVG, with matplotlib);\n"
+    "      --jobs: OMPL's planners with FCL (one thread each) run N at a time;\n"
+    "      --save-baseline keeps the groups' figures, --baseline compares with them\n"
+    "      (exit 5 on a regression beyond the configuration's tolerances); exit 3 when a\n"
+    "      returned path fails the fine FCL re-check; --report DIR summarises an earlier\n"
+    "      run's folder again (and draws its plots) instead of running\n"
     "  gplan info\n"
     "      how gplanner was built and which GPU it can use\n"
     "Output files (--out, --picture, --save-roadmap) are checked before any work: a\n"
     "regular file or a new one in a writable folder, never a folder or device, never a\n"
     "file the run reads or another output; a symbolic link is written through to its\n"
     "target. Each is written whole or not at all. Exit codes: 0 done, 1 internal error,\n"
-    "2 bad input or usage, 3 checkers disagree (check --compare), 4 no path (plan);\n"
+    "2 bad input or usage, 3 checkers disagree (check --compare) or a path failed the\n"
+    "FCL re-check (bench), 4 no path (plan), 5 a regression against the baseline (bench);\n"
     "SIGINT or SIGTERM stops a run cleanly, writing nothing more and leaving no temporary\n"
     "file: exit 130 (SIGINT) or 143 (SIGTERM); a second signal ends it at once.\n";
 
@@ -71,8 +85,9 @@ int run_command(int argc, char** argv) {
   const std::string command = argv[1];
   if (command == "check") return run_check(argc, argv);
   if (command == "plan") return run_plan(argc, argv);
+  if (command == "bench") return run_bench(argc, argv);
   if (command == "info") return run_info();
-  throw UsageError("unknown command '" + excerpt(command) + "'; use check, plan or info");
+  throw UsageError("unknown command '" + excerpt(command) + "'; use check, plan, bench or info");
 }
 
 }  // namespace gplan

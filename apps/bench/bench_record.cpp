@@ -75,6 +75,43 @@ long long parse_count(const std::string& field) {
   return std::stoll(field);
 }
 
+// One record from its fields (as many as bench_csv_columns()).
+BenchRecord record_from_fields(const std::vector<std::string>& f) {
+  const auto& columns = bench_csv_columns();
+  if (f.size() != columns.size()) {
+    throw std::runtime_error(std::to_string(f.size()) + " fields, not " +
+                             std::to_string(columns.size()));
+  }
+  std::size_t column = 0;
+  try {
+    BenchRecord r;
+    r.experiment = f[column++];
+    r.scene = f[column++];
+    r.planner = f[column++];
+    r.checker = f[column++];
+    r.run = static_cast<int>(parse_count(f[column++]));
+    r.seed = static_cast<std::uint64_t>(parse_count(f[column++]));
+    r.status = f[column++];
+    const std::string solved = f[column++];
+    if (solved != "0" && solved != "1") throw std::runtime_error("'" + solved + "' is not 0 or 1");
+    r.solved = solved == "1";
+    r.time_s = parse_number(f[column++]);
+    r.simplify_time_s = parse_number(f[column++]);
+    r.length = parse_number(f[column++]);
+    r.simplified_length = parse_number(f[column++]);
+    r.checks = parse_count(f[column++]);
+    r.graph_states = parse_count(f[column++]);
+    r.memory_mb = parse_number(f[column++]);
+    r.path_check = f[column++];
+    r.work = parse_count(f[column++]);
+    r.collisions = parse_count(f[column++]);
+    r.note = f[column++];
+    return r;
+  } catch (const std::exception& e) {
+    throw std::runtime_error("column " + columns[column - 1] + ": " + e.what());
+  }
+}
+
 }  // namespace
 
 const std::vector<std::string>& bench_csv_columns() {
@@ -102,6 +139,14 @@ void write_bench_csv_line(std::ostream& out, const BenchRecord& r) {
       << ',' << count(r.work) << ',' << count(r.collisions) << ',' << quoted(r.note) << "\n";
 }
 
+BenchRecord parse_bench_csv_record(const std::string& text) {
+  std::istringstream rest;
+  int line_number = 0;
+  std::string line = text;
+  while (!line.empty() && line.back() == '\n') line.pop_back();
+  return record_from_fields(split_csv(line, rest, &line_number));
+}
+
 std::vector<BenchRecord> read_bench_csv(const std::string& file) {
   std::ifstream in(file);
   if (!in) throw std::runtime_error(file + ": cannot be read");
@@ -124,39 +169,10 @@ std::vector<BenchRecord> read_bench_csv(const std::string& file) {
       continue;
     }
     if (f.size() == 1 && f[0].empty()) continue;
-    if (f.size() != columns.size()) {
-      throw std::runtime_error(file + ":" + std::to_string(first_line) + ": " +
-                               std::to_string(f.size()) + " fields, not " +
-                               std::to_string(columns.size()));
-    }
-    std::size_t column = 0;
     try {
-      BenchRecord r;
-      r.experiment = f[column++];
-      r.scene = f[column++];
-      r.planner = f[column++];
-      r.checker = f[column++];
-      r.run = static_cast<int>(parse_count(f[column++]));
-      r.seed = static_cast<std::uint64_t>(parse_count(f[column++]));
-      r.status = f[column++];
-      const std::string solved = f[column++];
-      if (solved != "0" && solved != "1") throw std::runtime_error("'" + solved + "' is not 0 or 1");
-      r.solved = solved == "1";
-      r.time_s = parse_number(f[column++]);
-      r.simplify_time_s = parse_number(f[column++]);
-      r.length = parse_number(f[column++]);
-      r.simplified_length = parse_number(f[column++]);
-      r.checks = parse_count(f[column++]);
-      r.graph_states = parse_count(f[column++]);
-      r.memory_mb = parse_number(f[column++]);
-      r.path_check = f[column++];
-      r.work = parse_count(f[column++]);
-      r.collisions = parse_count(f[column++]);
-      r.note = f[column++];
-      records.push_back(r);
+      records.push_back(record_from_fields(f));
     } catch (const std::exception& e) {
-      throw std::runtime_error(file + ":" + std::to_string(first_line) + ": column " +
-                               columns[column - 1] + ": " + e.what());
+      throw std::runtime_error(file + ":" + std::to_string(first_line) + ": " + e.what());
     }
   }
   return records;

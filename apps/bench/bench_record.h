@@ -54,6 +54,9 @@ void write_bench_csv_header(std::ostream& out);
 // Writes one record as a CSV line (RFC 4180 quoting where a field needs it; NaN and -1
 // as empty fields).
 void write_bench_csv_line(std::ostream& out, const BenchRecord& record);
+// One record from one line as write_bench_csv_line writes it (its newline optional);
+// throws std::runtime_error naming the column at fault.
+BenchRecord parse_bench_csv_record(const std::string& text);
 // Reads a CSV written by write_bench_csv_*; throws std::runtime_error naming the file,
 // line and column on anything else.
 std::vector<BenchRecord> read_bench_csv(const std::string& file);

@@ -5,8 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "gplanner/planner/checkers/fcl_checker.h"
-#include "gplanner/planner/planning/local_planner.h"
+#include "gplanner/planner/planning/path_recheck.h"
 #include "test_support.h"
 
 namespace gplanner::testing {
@@ -34,32 +33,7 @@ std::vector<float> sample_configurations(const Scene& scene, std::size_t n,
 }
 
 std::string path_problem(const Scene& scene, const std::vector<float>& path) {
-  const std::size_t width = scene.space.width();
-  const std::size_t m = path.size() / width;
-  if (m < 2 || path.size() != m * width) return "the path has fewer than 2 waypoints";
-  for (std::size_t k = 0; k < width; ++k) {
-    if (std::abs(path[k] - scene.start[k]) > 1e-5f) return "the path does not begin at the start";
-    if (std::abs(path[(m - 1) * width + k] - scene.goal[k]) > 1e-5f)
-      return "the path does not end at the goal";
-  }
-  FclChecker fcl(scene);
-  std::vector<std::uint8_t> states(m);
-  fcl.check(path.data(), m, states.data());
-  for (std::size_t i = 0; i < m; ++i)
-    if (states[i]) return "waypoint " + std::to_string(i) + " collides";
-  LocalPlannerOptions fine;
-  fine.resolution_fraction = scene.planner.number("edge_resolution") / 10;
-  fine.max_displacement = scene.planner.number("max_displacement") / 10;
-  LocalPlanner local(scene, &fcl, fine);
-  std::vector<std::uint8_t> invalid(m - 1);
-  local.check_motions(path.data(), path.data() + width, m - 1, invalid.data());
-  for (std::size_t i = 0; i + 1 < m; ++i) {
-    if (invalid[i]) {
-      return "segment " + std::to_string(i) + " (waypoints " + std::to_string(i) + " to " +
-             std::to_string(i + 1) + ") collides at a tenth of the edge resolution";
-    }
-  }
-  return "";
+  return path_recheck_problem(scene, path, 10, /*from_start_to_goal=*/true);
 }
 
 std::string scene_test_name(const std::string& file) {

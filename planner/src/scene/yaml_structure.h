@@ -1,6 +1,6 @@
 #pragma once
 // The structure of a YAML file, checked through yaml-cpp's event API before a node tree
-// is built (private to the scene loader).
+// is built (private to the scene loader and gplan bench configurations).
 
 #include <cstdint>
 #include <string>

@@ -1,0 +1,227 @@
+#include "bench_command.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "bench/bench_baseline.h"
+#include "bench/bench_config.h"
+#include "bench/bench_plots.h"
+#include "bench/bench_record.h"
+#include "bench/bench_runner.h"
+#include "bench/bench_summary.h"
+#include "bench/ompl_log.h"
+#include "command_line.h"
+#include "gplanner/planner/output/atomic_file.h"
+#include "gplanner/planner/output/output_paths.h"
+#include "gplanner/planner/output/text_escaping.h"
+#include "gplanner/planner/scene/input_file.h"
+#include "gplanner/planner/scene/scene.h"
+#include "interruption.h"
+
+namespace gplan {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Exit codes beyond gplan's own (0 done, 1 internal error, 2 bad input or usage).
+constexpr int kExitPathFailedRecheck = 3;  // a returned path failed the FCL re-check
+constexpr int kExitRegression = 5;         // worse than the baseline beyond a tolerance
+
+std::string timestamp(const char* format) {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char text[64];
+  std::strftime(text, sizeof text, format, &local);
+  return text;
+}
+
+// The output folder: a new one, or an empty one; never a folder with files in it (a
+// previous run's results are not replaced).
+void prepare_output_folder(const std::string& dir) {
+  std::error_code error;
+  const fs::file_status status = fs::symlink_status(dir, error);
+  if (fs::exists(status)) {
+    if (!fs::is_directory(fs::status(dir, error)))
+      throw UsageError("--out " + dir + ": is not a folder; name a new folder for the results");
+    if (!fs::is_empty(dir, error))
+      throw UsageError("--out " + dir + ": the folder has files in it; name a new or empty folder "
+                       "(the results of an earlier run are not replaced)");
+  } else {
+    fs::create_directories(dir, error);
+    if (error)
+      throw UsageError("--out " + dir + ": cannot be made (" + error.message() +
+                       "); name a folder that can be created");
+  }
+  // A probe, as for any output: a file can really be made there.
+  gplanner::writable_output_target("--out", (fs::path(dir) / "results.csv").string());
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  gplanner::write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+std::string csv_text(const std::vector<BenchRecord>& records) {
+  std::ostringstream out;
+  write_bench_csv_header(out);
+  for (const BenchRecord& record : records) write_bench_csv_line(out, record);
+  return out.str();
+}
+
+// Summary, verdicts and exit code of a run's records (a new run or --report).
+int conclude(const BenchConfig& config, const std::vector<BenchRecord>& records,
+             const std::string& dir, const std::string& baseline_file,
+             const std::string& save_baseline, bool plots) {
+  const std::vector<GroupSummary> groups = summarize(records);
+  std::ostringstream summary;
+  summary << "gplan bench " << config.name << " (" << config.kind << ")\n\n";
+  print_summary(summary, groups);
+  int failed_paths = 0;
+  for (const GroupSummary& g : groups) failed_paths += g.path_failures;
+  if (failed_paths) {
+    summary << "\nFAILED: " << failed_paths << " returned path" << (failed_paths > 1 ? "s" : "")
+            << " collide under the fine FCL re-check:\n";
+    for (const BenchRecord& r : records) {
+      if (r.path_check == "fail")
+        summary << "  " << r.scene << " " << r.planner << "@" << r.checker << " run " << r.run
+                << " (seed " << r.seed << "): " << r.note << "\n";
+    }
+  }
+  bool regressed = false;
+  if (!baseline_file.empty()) {
+    const BaselineVerdict verdict =
+        compare_with_baseline(groups, load_baseline(baseline_file), config.tolerances);
+    regressed = verdict.regressed();
+    summary << "\nagainst the baseline " << baseline_file << ": "
+            << (regressed ? "REGRESSION" : "within tolerance") << "\n";
+    for (const std::string& line : verdict.regressions) summary << "  regression: " << line << "\n";
+    for (const std::string& line : verdict.notes) summary << "  note: " << line << "\n";
+  }
+  std::cout << gplanner::terminal_text(summary.str()) << std::flush;
+  write_text((fs::path(dir) / "summary.txt").string(), summary.str());
+  if (!save_baseline.empty()) {
+    gplan::save_baseline(save_baseline, config.file, groups);
+    std::cerr << "baseline saved: " << save_baseline << "\n";
+  }
+  if (plots) {
+    std::string notice;
+    const std::string plot_dir = (fs::path(dir) / "plots").string();
+    fs::create_directories(plot_dir);
+    if (draw_bench_plots((fs::path(dir) / "results.csv").string(), plot_dir, &notice)) {
+      std::cerr << "plots: " << plot_dir << "\n";
+    } else {
+      std::cerr << "notice: no plots: " << gplanner::terminal_text(notice) << "\n";
+    }
+  }
+  if (failed_paths) return kExitPathFailedRecheck;
+  return regressed ? kExitRegression : 0;
+}
+
+}  // namespace
+
+int run_bench(int argc, char** argv) {
+  catch_interruptions();
+  // -o DIR is --out DIR.
+  std::vector<std::string> words(argv, argv + argc);
+  for (std::string& word : words)
+    if (word == "-o") word = "--out";
+  std::vector<char*> args_v;
+  for (std::string& word : words) args_v.push_back(word.data());
+  const CommandLine args(int(args_v.size()), args_v.data(), 2,
+                         {"out", "jobs", "baseline", "save-baseline", "report"}, {"no-plots"});
+  if (args.positionals().size() != 1)
+    throw UsageError("gplan bench takes one configuration file (config/bench/*.yaml), not " +
+                     std::to_string(args.positionals().size()) + "; give exactly one");
+  const std::string config_file = args.positionals()[0];
+  const int jobs = static_cast<int>(args.count("jobs", 1, 1, 1024));
+  const std::string baseline = args.text("baseline", "");
+  const std::string save = args.text("save-baseline", "");
+  const bool report = args.has("report");
+  if (report && args.has("out")) throw UsageError("--report DIR reads an earlier run's folder; leave out --out");
+
+  // Inputs and outputs checked before any work.
+  std::vector<gplanner::NamedFile> inputs{{"the configuration", config_file}};
+  if (!baseline.empty()) {
+    gplanner::check_input_file(baseline, {"baseline", 64 * gplanner::kMiB}, {"--baseline", 0, ""});
+    inputs.push_back({"the --baseline file", baseline});
+  }
+  std::vector<gplanner::NamedFile> outputs;
+  if (!save.empty()) outputs.push_back({"--save-baseline", save});
+  gplanner::check_output_paths(outputs, inputs);
+  const BenchConfig config = load_bench_config(config_file);
+  if (!baseline.empty()) load_baseline(baseline);  // its errors now, not after the runs
+
+  if (report) {
+    const std::string dir = args.text("report", "");
+    const std::string csv = (fs::path(dir) / "results.csv").string();
+    gplanner::check_input_file(csv, {"bench results", 1024 * gplanner::kMiB}, {"--report", 0, ""});
+    std::vector<BenchRecord> records;
+    try {
+      records = read_bench_csv(csv);
+    } catch (const std::runtime_error& e) {
+      throw gplanner::InputError({csv, 0, ""}, e.what());
+    }
+    return conclude(config, records, dir, baseline, save, !args.flag("no-plots"));
+  }
+
+  const std::string dir =
+      args.text("out", "gplan-bench-" + config.name + "-" + timestamp("%Y%m%d-%H%M%S"));
+  for (const auto& scene : config.scenes) inputs.push_back({"a scene of the configuration", scene});
+  gplanner::check_output_paths(outputs, inputs);
+  prepare_output_folder(dir);
+
+  // Scenes loaded once, before the workers are forked (they share them).
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<gplanner::Scene> scenes;
+  for (const std::string& file : config.scenes) {
+    std::cerr << "loading " << file << "\n";
+    scenes.push_back(gplanner::load_scene(file));
+    for (const std::string& notice : scenes.back().notices)
+      std::cerr << "notice: " << gplanner::terminal_text(notice) << "\n";
+    if (interrupted()) return report_interruption({}, {"--out " + dir});
+  }
+  const std::vector<BenchGroup> groups = bench_groups(config);
+  const std::string started = local_date_time();
+  const std::vector<BenchRecord> records =
+      run_bench_groups(config, scenes, groups, jobs, std::cerr, [] { return interrupted(); });
+  if (interrupted()) return report_interruption({}, {"--out " + dir});
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  write_text((fs::path(dir) / "results.csv").string(), csv_text(records));
+  write_text((fs::path(dir) / "config.yaml").string(),
+             gplanner::read_input_file(config_file, {"bench configuration", gplanner::kMiB},
+                                       {config_file, 0, ""}));
+  if (config.kind == "planning") {
+    fs::create_directories(fs::path(dir) / "ompl");
+    for (std::size_t s = 0; s < scenes.size(); ++s) {
+      const std::string name = fs::path(config.scenes[s]).stem().string();
+      std::vector<BenchRecord> scene_records;
+      for (const BenchRecord& r : records)
+        if (r.scene == name) scene_records.push_back(r);
+      OmplLogExperiment experiment;
+      experiment.host = ompl_host_name();
+      experiment.cpu_info = ompl_cpu_info();
+      experiment.name = config.name + ": " + name;
+      experiment.setup = "gplan bench " + config.file + "\nscene " + config.scenes[s];
+      experiment.date = started;
+      experiment.seed = config.seed;
+      experiment.time_limit_s = config.time_limit_s;
+      experiment.memory_limit_mb = 0;
+      experiment.total_seconds = total;
+      experiment.runs_per_planner = config.runs;
+      write_ompl_log_file((fs::path(dir) / "ompl" / (name + ".log")).string(), experiment,
+                          scene_records);
+    }
+  }
+  std::cerr << "results: " << dir << "\n";
+  return conclude(config, records, dir, baseline, save, !args.flag("no-plots"));
+}
+
+}  // namespace gplan

@@ -141,8 +141,7 @@ std::string correct_solution(const BenchRecord& record) {
   if (record.path_check == "pass") return "1";
   if (record.path_check == "fail") return "0";
   if (record.path_check.empty()) return "";
-  reject(record, "the path check '" + one_line(record.path_check) +
-                     "' is not pass, fail or empty");
+  reject(record, "the path check '" + one_line(record.path_check) + "' is not pass, fail or empty");
 }
 
 using Properties = std::map<std::string, std::string>;  // "name TYPE" -> value, sorted
@@ -186,8 +185,9 @@ std::vector<LogPlanner> log_planners(const std::vector<BenchRecord>& records) {
   for (const BenchRecord& record : records) {
     if (record.planner == "collision-queries" || record.planner == "local-planning") continue;
     if (!is_planner(record.planner))
-      reject(record, "the planner is none of ours-lazyprm, ours-prm, ompl-rrtconnect, "
-                     "ompl-prm, ompl-lazyprm, collision-queries, local-planning");
+      reject(record,
+             "the planner is none of ours-lazyprm, ours-prm, ompl-rrtconnect, "
+             "ompl-prm, ompl-lazyprm, collision-queries, local-planning");
     const auto key = std::make_pair(record.planner, record.checker);
     auto found = index.find(key);
     if (found == index.end()) {
@@ -223,13 +223,15 @@ void write_planner(std::ostream& out, const LogPlanner& planner) {
 
 std::string ompl_planner_name(const std::string& planner, const std::string& checker) {
   static const std::map<std::string, std::string> kNames = {
-      {"ompl-rrtconnect", "geometric_RRTConnect"}, {"ompl-prm", "geometric_PRM"},
-      {"ompl-lazyprm", "geometric_LazyPRM"},       {"ours-lazyprm", "gplanner_LazyPRM"},
+      {"ompl-rrtconnect", "geometric_RRTConnect"},
+      {"ompl-prm", "geometric_PRM"},
+      {"ompl-lazyprm", "geometric_LazyPRM"},
+      {"ours-lazyprm", "gplanner_LazyPRM"},
       {"ours-prm", "gplanner_PRM"}};
   const auto found = kNames.find(planner);
   if (found == kNames.end())
-    throw std::invalid_argument("OMPL log: the planner '" + one_line(planner) +
-                                "' is none of " + "ours-lazyprm, ours-prm, ompl-rrtconnect, "
+    throw std::invalid_argument("OMPL log: the planner '" + one_line(planner) + "' is none of " +
+                                "ours-lazyprm, ours-prm, ompl-rrtconnect, "
                                 "ompl-prm, ompl-lazyprm");
   return found->second + "_" + one_word(checker, "unknown");
 }

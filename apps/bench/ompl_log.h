@@ -14,8 +14,8 @@
 namespace gplan {
 
 struct OmplLogExperiment {
-  std::string name;   // the experiment's name, e.g. "regression: piano"
-  std::string setup;  // free text: the scene file, its settings, the config
+  std::string name;                  // the experiment's name, e.g. "regression: piano"
+  std::string setup;                 // free text: the scene file, its settings, the config
   std::string host, cpu_info, date;  // cpu_info may be empty
   std::uint64_t seed = 0;            // the first run's seed
   double time_limit_s = 0, memory_limit_mb = 0, total_seconds = 0;

@@ -30,6 +30,8 @@ import matplotlib
 matplotlib.use("Agg")
 from matplotlib import pyplot  # noqa: E402  (after the backend is chosen)
 from matplotlib import transforms  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
 
 # The columns of bench_csv_columns() in apps/bench/bench_record.cpp, in order.
 COLUMNS = ["experiment", "scene", "planner", "checker", "run", "seed", "status", "solved",
@@ -272,12 +274,12 @@ def draw_planning_panel(axes, scene, runs, checkers):
 
 
 def planning_legend(figure, runs):
-    handles = [matplotlib.lines.Line2D([], [], marker="o", linestyle="", color="black",
+    handles = [Line2D([], [], marker="o", linestyle="", color="black",
                                        alpha=0.7, markersize=4, label="run that found a path"),
-               matplotlib.lines.Line2D([], [], marker="x", linestyle="", color="#d7191c",
+               Line2D([], [], marker="x", linestyle="", color="#d7191c",
                                        markersize=6, markeredgewidth=1.5,
                                        label="run without a path (ran to the time limit)"),
-               matplotlib.lines.Line2D([], [], color=CHECKER_COLOURS["fcl"], linestyle="--",
+               Line2D([], [], color=CHECKER_COLOURS["fcl"], linestyle="--",
                                        label="baseline's median (fastest FCL group)")]
     note = "boxes: quartiles and median, whiskers: fastest and slowest run; right: solved/runs"
     if any(r.time_s is not None and r.time_s < SHORTEST_TIME_S for r in runs):
@@ -337,17 +339,12 @@ def draw_query_table(experiment, table, runs, out_dir):
                               ha="center", va="bottom", fontsize=7)
                 continue
             median = max(statistics.median(times), SHORTEST_TIME_S)
-            bars = axes.bar(x, median, width, color=colour(checker, checkers), label=checker)
+            bars = axes.bar(x, median, width, color=colour(checker, checkers))
             axes.bar_label(bars, labels=[time_text(median)], rotation=90, padding=2,
                            fontsize=7)
-    # One legend entry per checker, whichever scene drew it first.
-    handles = {}
-    for container in axes.containers:
-        label = container.get_label()
-        if label and not label.startswith("_") and label not in handles:
-            handles[label] = container
-    axes.legend(list(handles.values()), list(handles), title="checker", fontsize=8,
-                title_fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1))
+    axes.legend(handles=[Patch(color=colour(c, checkers), label=c) for c in checkers],
+                title="checker", fontsize=8, title_fontsize=8, loc="upper left",
+                bbox_to_anchor=(1.01, 1))
     axes.set_yscale("log")
     # From the decade below the shortest bar, with room for the labels above the tallest.
     heights = [bar.get_height() for container in axes.containers for bar in container]
@@ -358,6 +355,7 @@ def draw_query_table(experiment, table, runs, out_dir):
         if r.work is not None:
             work.setdefault(r.scene, set()).add(r.work)
     unit = "configurations" if table == "collision-queries" else "edges"
+    axes.set_xlim(-0.5, len(scenes) - 0.5)
     axes.set_xticks(range(len(scenes)))
     axes.set_xticklabels(["%s\n%s %s" % (s, "/".join(str(w) for w in sorted(work[s])), unit)
                           if s in work else s for s in scenes], fontsize=8)

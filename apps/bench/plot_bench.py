@@ -17,14 +17,18 @@ embedded in its binary (apps/bench/bench_plots.cpp) as `python3 - CSV OUT_DIR`.
 usage: plot_bench.py CSV OUT_DIR
 exit:  0 drawn, 1 an output could not be written, 2 the CSV is not a gplan bench CSV
 """
-import csv
-import math
-import os
-import statistics
 import sys
-import tempfile
-from collections import defaultdict
 
+# Run as `python3 - CSV OUT_DIR`, the working folder comes first in sys.path: a csv.py or
+# matplotlib/ of the user's there must not stand in for the real ones.
+if sys.path and sys.path[0] == "":
+    del sys.path[0]
+
+import csv  # noqa: E402  (after sys.path is set)
+import math  # noqa: E402
+import os  # noqa: E402
+import statistics  # noqa: E402
+import tempfile  # noqa: E402
 import matplotlib
 
 matplotlib.use("Agg")

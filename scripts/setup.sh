@@ -6,7 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(g++ cmake make libeigen3-dev libyaml-cpp-dev liburdfdom-dev libtinyxml2-dev
-          libassimp-dev libfcl-dev libccd-dev libgtest-dev libompl-dev ompl-demos)
+          libassimp-dev libfcl-dev libccd-dev libgtest-dev libompl-dev ompl-demos
+          python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

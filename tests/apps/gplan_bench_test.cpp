@@ -1,0 +1,155 @@
+// `gplan bench` through the real binary: CI's small configuration (cpu and fcl) against
+// its stored baseline, a planted regression, a path that fails the FCL re-check, and
+// outputs that must not be written.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "bench/bench_baseline.h"
+#include "bench/bench_record.h"
+#include "test_support.h"
+
+namespace gplan {
+namespace {
+
+namespace fs = std::filesystem;
+using gplanner::testing::CommandResult;
+using gplanner::testing::project_root;
+using gplanner::testing::read_file;
+using gplanner::testing::run_gplan;
+using gplanner::testing::ScratchFolder;
+using gplanner::testing::shell_quoted;
+
+std::string config(const std::string& name) { return project_root() + "/config/bench/" + name; }
+
+// A baseline faster and more successful than `run`: every group's median time a tenth,
+// its success rate 1.
+std::string planted_baseline(const ScratchFolder& folder, const std::string& run_dir) {
+  const std::string saved = folder.path() + "/saved.yaml";
+  const CommandResult report =
+      run_gplan("bench " + config("ci_small.yaml") + " --report " + shell_quoted(run_dir) +
+                " --no-plots --save-baseline " + shell_quoted(saved));
+  EXPECT_EQ(report.exit_code, 0) << report.output;
+  std::vector<GroupSummary> groups = load_baseline(saved);
+  for (GroupSummary& g : groups) {
+    g.median_time_s /= 10;
+    g.success_rate = 1;
+  }
+  const std::string planted = folder.path() + "/planted.yaml";
+  save_baseline(planted, "planted", groups);
+  return planted;
+}
+
+TEST(GplanBench, CiConfigurationPassesAgainstItsStoredBaselineAndAPlantedRegressionFails) {
+  const ScratchFolder folder;
+  const std::string out = folder.path() + "/run one";
+  const CommandResult run =
+      run_gplan("bench " + config("ci_small.yaml") + " -o " + shell_quoted(out) +
+                " --baseline " + config("ci_small.baseline.yaml"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("within tolerance"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("[1/2] pr2_base_arm ours-lazyprm@cpu: 3 runs"), std::string::npos)
+      << run.output;
+
+  // Every run recorded, each with its own seed; every path re-checked and free.
+  const std::vector<BenchRecord> records = read_bench_csv(out + "/results.csv");
+  ASSERT_EQ(records.size(), 6u);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(records[i].experiment, "ci-small");
+    EXPECT_EQ(records[i].scene, "pr2_base_arm");
+    EXPECT_EQ(records[i].seed, 1u + i % 3);
+    EXPECT_TRUE(records[i].solved) << records[i].note;
+    EXPECT_EQ(records[i].path_check, "pass");
+    EXPECT_GT(records[i].time_s, 0);
+    EXPECT_GT(records[i].simplified_length, 0);
+    EXPECT_GT(records[i].memory_mb, 0);
+  }
+  EXPECT_EQ(records[0].planner, "ours-lazyprm");
+  EXPECT_EQ(records[0].checker, "cpu");
+  EXPECT_EQ(records[3].planner, "ompl-rrtconnect");
+  EXPECT_EQ(records[3].checker, "fcl");
+  // OMPL's runs differ from each other (OMPL's generator seeded per run).
+  EXPECT_NE(records[3].length, records[4].length);
+
+  // The other outputs.
+  EXPECT_NE(read_file(out + "/summary.txt").find("ompl-rrtconnect@fcl"), std::string::npos);
+  EXPECT_EQ(read_file(out + "/ompl/pr2_base_arm.log").rfind("OMPL version", 0), 0u);
+  EXPECT_EQ(read_file(out + "/config.yaml"), read_file(config("ci_small.yaml")));
+  for (const char* figure : {"plan_times", "pr2_base_arm"}) {
+    EXPECT_TRUE(fs::is_regular_file(out + "/plots/" + figure + ".png")) << figure;
+    EXPECT_TRUE(fs::is_regular_file(out + "/plots/" + figure + ".svg")) << figure;
+  }
+
+  // A planted regression: the same runs against a faster, more successful baseline.
+  const std::string planted = planted_baseline(folder, out);
+  const CommandResult report = run_gplan("bench " + config("ci_small.yaml") + " --report " +
+                                         shell_quoted(out) + " --no-plots --baseline " + planted);
+  EXPECT_EQ(report.exit_code, 5) << report.output;
+  EXPECT_NE(report.output.find("REGRESSION"), std::string::npos) << report.output;
+  EXPECT_NE(report.output.find("regression: pr2_base_arm ours-lazyprm@cpu: median time"),
+            std::string::npos)
+      << report.output;
+  // And a new run against it.
+  const CommandResult again =
+      run_gplan("bench " + config("ci_small.yaml") + " -o " + shell_quoted(folder.path() + "/two") +
+                " --no-plots --baseline " + planted);
+  EXPECT_EQ(again.exit_code, 5) << again.output;
+}
+
+TEST(GplanBench, APathThatFailsTheFclRecheckExits3WhateverTheBaseline) {
+  const ScratchFolder folder;
+  BenchRecord record;
+  record.experiment = "ci-small";
+  record.scene = "pr2_base_arm";
+  record.planner = "ompl-rrtconnect";
+  record.checker = "fcl";
+  record.status = "exact";
+  record.solved = true;
+  record.time_s = 0.5;
+  record.simplified_length = 3;
+  record.seed = 9;
+  record.path_check = "fail";
+  record.note = "FCL re-check: segment 2 (waypoints 2 to 3) collides at 1/10 of the edge resolution";
+  std::ofstream csv(folder.path() + "/results.csv");
+  write_bench_csv_header(csv);
+  write_bench_csv_line(csv, record);
+  csv.close();
+  const CommandResult report =
+      run_gplan("bench " + config("ci_small.yaml") + " --report " + folder.path() + " --no-plots");
+  EXPECT_EQ(report.exit_code, 3) << report.output;
+  EXPECT_NE(report.output.find("FAILED: 1 returned path collide"), std::string::npos) << report.output;
+  EXPECT_NE(report.output.find("run 0 (seed 9): FCL re-check: segment 2"), std::string::npos)
+      << report.output;
+}
+
+TEST(GplanBench, RefusesOutputsThatWouldReplaceSomething) {
+  const ScratchFolder folder;
+  fs::create_directories(folder.path() + "/used");
+  const std::string used = folder.write("used/notes.txt", "mine\n");
+  CommandResult result = run_gplan("bench " + config("ci_small.yaml") + " -o " +
+                                   folder.path() + "/used");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("the folder has files in it"), std::string::npos) << result.output;
+  EXPECT_EQ(read_file(used), "mine\n");
+
+  // The baseline to save is a scene of the configuration.
+  const std::string scene = folder.write("scene_copy.yaml", read_file(project_root() + "/scenes/piano.yaml"));
+  const std::string bench = folder.write(
+      "bench.yaml", "kind: planning\nscenes: [scene_copy.yaml]\nplanners: [ours-lazyprm@cpu]\n");
+  result = run_gplan("bench " + bench + " -o " + folder.path() + "/new --save-baseline " + scene);
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("--save-baseline"), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(folder.path() + "/new"));
+  EXPECT_EQ(read_file(scene), read_file(project_root() + "/scenes/piano.yaml"));
+
+  // No configuration, or two.
+  EXPECT_EQ(run_gplan("bench").exit_code, 2);
+  EXPECT_EQ(run_gplan("bench " + bench + " " + bench).exit_code, 2);
+}
+
+}  // namespace
+}  // namespace gplan

@@ -43,10 +43,9 @@ void require_one_of(const std::string& what, const std::string& name,
 
 void require_memory(const std::string& what, double bytes) {
   if (gplanner::fits_in_memory(bytes)) return;
-  throw std::invalid_argument(what + " need about " + gplanner::memory_text(bytes) +
-                              ", more than half of this machine's " +
-                              gplanner::memory_text(gplanner::physical_memory_bytes()) +
-                              " of memory; ask for fewer");
+  throw std::invalid_argument(
+      what + " need about " + gplanner::memory_text(bytes) + ", more than half of this machine's " +
+      gplanner::memory_text(gplanner::physical_memory_bytes()) + " of memory; ask for fewer");
 }
 
 void check_options(const std::string& table, const QueryTableOptions& options, int width) {
@@ -67,16 +66,15 @@ void check_options(const std::string& table, const QueryTableOptions& options, i
       throw std::invalid_argument("neighbors " + std::to_string(options.neighbors) +
                                   ": each milestone needs 1 or more neighbours");
     // The edges' two ends, at most milestones * k of them.
-    require_memory(std::to_string(options.milestones) + " milestones with " +
-                       std::to_string(options.neighbors) + " neighbours",
-                   static_cast<double>(options.milestones) * options.neighbors *
-                       (2 * row_bytes + 1));
+    require_memory(
+        std::to_string(options.milestones) + " milestones with " +
+            std::to_string(options.neighbors) + " neighbours",
+        static_cast<double>(options.milestones) * options.neighbors * (2 * row_bytes + 1));
   }
 }
 
 // The collision-queries batch: as `gplan check --seed` draws it.
-std::vector<float> sample_queries(const gplanner::Scene& scene, std::size_t n,
-                                  std::uint64_t seed) {
+std::vector<float> sample_queries(const gplanner::Scene& scene, std::size_t n, std::uint64_t seed) {
   const std::size_t width = scene.space.width();
   std::vector<float> q(n * width);
   std::mt19937_64 rng(seed);
@@ -98,14 +96,14 @@ std::vector<float> free_milestones(const gplanner::Scene& scene, std::size_t cou
   while (found_count < count) {
     if (interrupted()) return {};
     if (attempts >= most_attempts) {
-      throw std::runtime_error(
-          "scene " + scene.name + ": local-planning found only " + std::to_string(found_count) +
-          " free milestones of the " + std::to_string(count) + " asked for in " +
-          std::to_string(attempts) + " uniform samples (the free space is too small a part " +
-          "of the configuration space); ask for fewer milestones");
+      throw std::runtime_error("scene " + scene.name + ": local-planning found only " +
+                               std::to_string(found_count) + " free milestones of the " +
+                               std::to_string(count) + " asked for in " + std::to_string(attempts) +
+                               " uniform samples (the free space is too small a part " +
+                               "of the configuration space); ask for fewer milestones");
     }
-    const std::size_t n = std::min(std::max<std::size_t>(2 * (count - found_count), 1024),
-                                   most_attempts - attempts);
+    const std::size_t n =
+        std::min(std::max<std::size_t>(2 * (count - found_count), 1024), most_attempts - attempts);
     batch.resize(n * width);
     colliding.resize(n);
     for (std::size_t i = 0; i < n; ++i) scene.space.sample_uniform(&rng, &batch[i * width]);
@@ -221,17 +219,22 @@ void run_query_group(const gplanner::Scene& scene, const std::string& experiment
   const std::size_t work = queries ? options.queries : edges.count;
 
   TableChecker made = make_table_checker(scene, checker);
-  // Batches by sample count, not sized by time as a planner's are (its stop is polled
-  // every slice): the same batches on every checker.
-  gplanner::LocalPlanner local(scene, made.checker.get(), gplanner::plan_options(scene).local);
-  local.set_stop([] { return interrupted(); });
+  // local-planning: the planner's local planner at the scene's edge resolution, its
+  // batches sized by sample count rather than by time as a planner's are (a planner
+  // polls its stop every slice), so that every checker gets the same batches.
+  std::unique_ptr<gplanner::LocalPlanner> local;
+  if (!queries) {
+    local = std::make_unique<gplanner::LocalPlanner>(scene, made.checker.get(),
+                                                     gplanner::plan_options(scene).local);
+    local->set_stop([] { return interrupted(); });
+  }
   // One batch call; false when interrupted.
   auto call = [&](std::uint8_t* verdicts) {
     if (queries) {
       made.checker->check(configurations.data(), work, verdicts);
       return true;
     }
-    return local.check_motions(edges.from.data(), edges.to.data(), work, verdicts);
+    return local->check_motions(edges.from.data(), edges.to.data(), work, verdicts);
   };
 
   std::vector<std::uint8_t> warm_up(work), verdicts(work);

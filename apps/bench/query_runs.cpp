@@ -96,7 +96,7 @@ std::vector<float> free_milestones(const gplanner::Scene& scene, std::size_t cou
   while (found_count < count) {
     if (interrupted()) return {};
     if (attempts >= most_attempts) {
-      throw std::runtime_error("scene " + scene.name + ": local-planning found only " +
+      throw std::runtime_error(scene.file + ": local-planning found only " +
                                std::to_string(found_count) + " free milestones of the " +
                                std::to_string(count) + " asked for in " + std::to_string(attempts) +
                                " uniform samples (the free space is too small a part " +

@@ -104,7 +104,9 @@ int conclude(const BenchConfig& config, const std::vector<BenchRecord>& records,
     for (const std::string& line : verdict.regressions) summary << "  regression: " << line << "\n";
     for (const std::string& line : verdict.notes) summary << "  note: " << line << "\n";
   }
-  std::cout << gplanner::terminal_text(summary.str()) << std::flush;
+  std::istringstream lines(summary.str());
+  for (std::string line; std::getline(lines, line);) std::cout << gplanner::terminal_text(line) << "\n";
+  std::cout << std::flush;
   write_text((fs::path(dir) / "summary.txt").string(), summary.str());
   if (!save_baseline.empty()) {
     gplan::save_baseline(save_baseline, config.file, groups);
@@ -208,7 +210,7 @@ int run_bench(int argc, char** argv) {
       OmplLogExperiment experiment;
       experiment.host = ompl_host_name();
       experiment.cpu_info = ompl_cpu_info();
-      experiment.name = config.name + ": " + name;
+      experiment.name = config.name + "." + name;  // one word: the reader keeps the last
       experiment.setup = "gplan bench " + config.file + "\nscene " + config.scenes[s];
       experiment.date = started;
       experiment.seed = config.seed;

@@ -147,10 +147,13 @@ void print_summary(std::ostream& out, const std::vector<GroupSummary>& groups) {
   for (const auto& row : rows)
     for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
   for (std::size_t r = 0; r < rows.size(); ++r) {
+    std::ostringstream line;
     for (std::size_t c = 0; c < rows[r].size(); ++c) {
-      out << (c ? "  " : "") << std::left << std::setw(int(width[c])) << rows[r][c];
+      line << (c ? "  " : "") << std::left << std::setw(int(width[c])) << rows[r][c];
     }
-    out << "\n";
+    std::string text = line.str();
+    text.erase(text.find_last_not_of(' ') + 1);
+    out << text << "\n";
     if (r == 0) {
       std::size_t total = 0;
       for (std::size_t w : width) total += w + 2;

@@ -31,6 +31,12 @@
 #      plugin     OMPL's planners with FCL beside the same planners   plugin.jsonl
 #                 with our GPU checker (PLUGIN_SCENES, default
 #                 "pr2_base_arm humanoid helicopter pr2_reach piano")
+#      seed-tables the seed's three tables through gplan bench     seed_collision_queries/,
+#                 (config/bench/seed_*.yaml)                          seed_local_planning/,
+#                                                                     seed_pr2/
+#      regression gplan bench config/bench/regression.yaml, OMPL's   regression/
+#                 single-threaded planners 4 fewer than the CPUs at
+#                 a time
 #    Every call also writes OUT_DIR/machine.txt (GPU, driver, CPU, commit, date,
 #    tables). Progress goes to stderr. The exit status is 1 when a program failed (the
 #    other tables still run). Where one command may run at most 10 minutes, split the
@@ -75,7 +81,7 @@ case ${1:-} in ''|-h|--help) usage; exit 2 ;; esac
 mkdir -p "$1"
 out=$(cd "$1" && pwd)
 shift
-all=(gpu-tests peak collision agreement plan knn time-limit hostile plugin)
+all=(gpu-tests peak collision agreement plan knn time-limit hostile plugin seed-tables regression)
 tables=("$@")
 [ ${#tables[@]} -gt 0 ] || tables=("${all[@]}")
 for t in "${tables[@]}"; do
@@ -210,6 +216,18 @@ for t in "${tables[@]}"; do
         OMPL_CORES=$ompl_cores OMPL_JOBS=$ompl_jobs \
         bench/plan_table.sh ompl+plugin "$run" "$bin/gplanner_plan_bench" > "$out/plugin.jsonl" \
         || failed+=("$t")
+      ;;
+    seed-tables)
+      # The plots are drawn on the build machine (gplan bench --report): the GPU
+      # machine has no matplotlib.
+      for config in seed_collision_queries seed_local_planning seed_pr2; do
+        "$run" "$bin/gplan" bench "config/bench/$config.yaml" -o "$out/$config" --no-plots \
+          || failed+=("$t ($config)")
+      done
+      ;;
+    regression)
+      "$run" "$bin/gplan" bench config/bench/regression.yaml -o "$out/regression" --no-plots \
+        --jobs $((cores > 5 ? cores - 4 : 1)) || failed+=("$t")
       ;;
   esac
 done

@@ -111,6 +111,12 @@ const std::vector<std::string>& bench_plan_checkers() {
   return checkers;
 }
 
+std::string fallback_refusal(const std::string& checker, const std::string& notice) {
+  return "no GPU can be used here (" + notice + "); " + checker +
+         " is left out rather than timing the cpu backend under its name: measure cpu by its "
+         "own name, or run where there is a GPU";
+}
+
 BenchConfig load_bench_config(const std::string& file) {
   const std::string text = gplanner::read_input_file(file, kBenchConfigFile, {file, 0, ""});
   gplanner::check_yaml_structure(text, file, "");

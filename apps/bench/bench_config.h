@@ -72,4 +72,9 @@ BenchConfig load_bench_config(const std::string& file);
 const std::vector<std::string>& bench_planners();
 const std::vector<std::string>& bench_plan_checkers();
 
+// Why a group asking for a gpu checker is left out where the gpu backend would run on
+// the cpu instead (`notice`: the fallback's reason): its times would be the cpu's under a
+// gpu name.
+std::string fallback_refusal(const std::string& checker, const std::string& notice);
+
 }  // namespace gplan

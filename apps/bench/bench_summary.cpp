@@ -37,6 +37,10 @@ std::string seconds(double s) {
   return text.str();
 }
 
+std::string range(double low, double high) {
+  return std::isfinite(low) ? seconds(low) + " - " + seconds(high) : "-";
+}
+
 }  // namespace
 
 double median_of(std::vector<double> values) {
@@ -66,6 +70,7 @@ std::vector<GroupSummary> summarize(const std::vector<BenchRecord>& records) {
     for (const BenchRecord* r : members[g.key()]) {
       ++g.runs;
       if (r->status == "crash" || r->status == "error") ++g.crashes;
+      if (!r->path_check.empty()) ++g.paths_checked;
       if (r->path_check == "fail") ++g.path_failures;
       if (r->solved) ++g.solved;
       if (std::isfinite(r->time_s)) {
@@ -136,11 +141,14 @@ void print_summary(std::ostream& out, const std::vector<GroupSummary>& groups) {
     } else {
       speedup << "-";
     }
-    recheck << (table ? "-" : g.path_failures ? std::to_string(g.path_failures) + " FAILED" : "pass");
+    if (g.path_failures) {
+      recheck << g.path_failures << " of " << g.paths_checked << " FAILED";
+    } else {
+      recheck << (g.paths_checked ? std::to_string(g.paths_checked) + " pass" : "-");
+    }
     rows.push_back({g.scene, g.planner + "@" + g.checker, std::to_string(g.runs), success.str(),
                     (g.median_is_lower_bound ? ">" : "") + seconds(g.median_time_s),
-                    seconds(g.q1_time_s) + " - " + seconds(g.q3_time_s),
-                    seconds(g.min_time_s) + " - " + seconds(g.max_time_s), length.str(),
+                    range(g.q1_time_s, g.q3_time_s), range(g.min_time_s, g.max_time_s), length.str(),
                     speedup.str(), recheck.str(), std::to_string(g.crashes)});
   }
   std::vector<std::size_t> width(rows[0].size(), 0);

@@ -22,7 +22,8 @@ struct GroupSummary {
   // Median length of the returned paths (after simplification where there was one);
   // NaN with no path.
   double median_length = 0;
-  int path_failures = 0;   // returned paths that failed the FCL re-check
+  int paths_checked = 0;   // returned paths re-checked with FCL
+  int path_failures = 0;   // of them, those that failed
   int crashes = 0;         // runs with status crash or error
   // The FCL baseline this group is set against: the same planner with FCL on the CPU
   // where the run has it, otherwise the fastest FCL group of the scene (the fcl checker

@@ -10,6 +10,7 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include <chrono>
+#include <cmath>
 #include <memory>
 
 #include "bench/peak_memory.h"
@@ -158,11 +159,14 @@ void run_planning_group(const gplanner::Scene& scene, const std::string& scene_n
   if (choice.ours() || choice.checker != "fcl") {
     std::string fallback;
     checker = gplanner::make_collision_checker(scene, choice.checker, {}, &fallback);
-    if (!fallback.empty()) notice(fallback);
+    if (checker->backend() != choice.checker)
+      throw std::runtime_error(fallback_refusal(choice.label(), fallback));
     ran = checker->backend();
     if (choice.ours()) {
+      std::string knn_notice;
       neighbors = gplanner::make_neighbor_finder(
-          gplanner::make_metric(scene.space, scene.planner), checker->backend());
+          gplanner::make_metric(scene.space, scene.planner), checker->backend(), &knn_notice);
+      if (!knn_notice.empty()) notice(knn_notice);
     }
   }
   double spent = 0;
@@ -187,7 +191,6 @@ void run_planning_group(const gplanner::Scene& scene, const std::string& scene_n
     record.scene = scene_name;
     record.planner = choice.planner;
     record.checker = ran;
-    if (ran != choice.checker) record.note += (record.note.empty() ? "" : "; ") + std::string("asked for ") + choice.checker;
     record.run = run;
     record.seed = seed;
     spent += std::isfinite(record.time_s) ? record.time_s : config.time_limit_s;

@@ -28,7 +28,8 @@ namespace gplan {
 // Runs the group's runs, calling `emit` with each run's record as it ends. Stops early
 // (the remaining runs not run) when the group has spent config.group_budget_s or when
 // `should_stop` says so (it is also polled during a solve). `notice` receives what the
-// user should know once (a gpu backend falling back to cpu).
+// user should know once (the k-NN's fallback). A gpu checker that would run on the cpu
+// backend (no GPU here) throws: its times would be the cpu's under a gpu name.
 void run_planning_group(const gplanner::Scene& scene, const std::string& scene_name,
                         const BenchConfig& config, const PlannerChoice& choice,
                         const std::function<void(const BenchRecord&)>& emit,

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "bench/bench_config.h"
 #include "gplanner/common/physical_memory.h"
 #include "gplanner/planner/checkers/checker_factory.h"
 #include "gplanner/planner/checkers/cpu_checker.h"
@@ -176,7 +177,10 @@ TableChecker make_table_checker(const gplanner::Scene& scene, const std::string&
   }
   TableChecker made;
   made.checker = gplanner::make_collision_checker(scene, backend, options, &made.note);
-  made.name = made.checker->backend() == backend ? name : made.checker->backend();
+  // A fallback would put the cpu backend's times under a gpu name, or beside the cpu
+  // group's own: the group is refused instead.
+  if (made.checker->backend() != backend) throw std::runtime_error(fallback_refusal(name, made.note));
+  made.name = name;
   return made;
 }
 

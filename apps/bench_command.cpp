@@ -191,9 +191,19 @@ int run_bench(int argc, char** argv) {
   }
   const std::vector<BenchGroup> groups = bench_groups(config);
   const std::string started = local_date_time();
-  const std::vector<BenchRecord> records =
-      run_bench_groups(config, scenes, groups, jobs, std::cerr, [] { return interrupted(); });
-  if (interrupted()) return report_interruption({}, {"--out " + dir});
+  // Each record also goes to results.partial.csv as it comes, so that the runs done are
+  // kept when the benchmark is interrupted or killed; results.csv replaces it at the end.
+  const std::string partial = (fs::path(dir) / "results.partial.csv").string();
+  std::ofstream partial_csv(partial);
+  write_bench_csv_header(partial_csv);
+  const std::vector<BenchRecord> records = run_bench_groups(
+      config, scenes, groups, jobs, std::cerr, [] { return interrupted(); },
+      [&](const BenchRecord& record) {
+        write_bench_csv_line(partial_csv, record);
+        partial_csv.flush();
+      });
+  partial_csv.close();
+  if (interrupted()) return report_interruption({partial + " (the runs done)"}, {});
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   write_text((fs::path(dir) / "results.csv").string(), csv_text(records));
@@ -222,6 +232,7 @@ int run_bench(int argc, char** argv) {
                           scene_records);
     }
   }
+  fs::remove(partial);
   std::cerr << "results: " << dir << "\n";
   return conclude(config, records, dir, baseline, save, !args.flag("no-plots"));
 }

@@ -145,7 +145,8 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
                                           const std::vector<gplanner::Scene>& scenes,
                                           const std::vector<BenchGroup>& groups, int jobs,
                                           std::ostream& progress,
-                                          const std::function<bool()>& should_stop) {
+                                          const std::function<bool()>& should_stop,
+                                          const std::function<void(const BenchRecord&)>& on_record) {
   std::vector<std::vector<BenchRecord>> records(groups.size());
   std::vector<Worker> running;
   std::set<std::string> notices;
@@ -189,6 +190,7 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
       if (type == 'R') {
         const BenchRecord record = parse_bench_csv_record(payload);
         records[worker.group].push_back(record);
+        on_record(record);
         ++worker.records;
         progress << "  " << group.label() << " " << worker.records << "/" << group.runs << ": "
                  << describe(record) << "\n";
@@ -226,6 +228,7 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
       record.note = "the worker process exited with status " + std::to_string(WEXITSTATUS(status));
     }
     records[worker.group].push_back(record);
+    on_record(record);
     progress << "  " << group.label() << " " << worker.records + 1 << "/" << group.runs << ": "
              << describe(record) << "\n";
   };

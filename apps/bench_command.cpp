@@ -201,7 +201,8 @@ int run_bench(int argc, char** argv) {
       [&](const BenchRecord& record) {
         write_bench_csv_line(partial_csv, record);
         partial_csv.flush();
-      });
+      },
+      (fs::path(dir) / "failed_paths").string());
   partial_csv.close();
   if (interrupted()) return report_interruption({partial + " (the runs done)"}, {});
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

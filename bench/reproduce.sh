@@ -142,6 +142,17 @@ time_limit_table() {  # one JSON line per run: the run's --json line and the wal
     done
   done
 }
+bench_config() {  # gplan bench CONFIG into OUT_SUBDIR; its exits 3 and 5 are findings
+  local config=$1 dir=$2 status=0
+  shift 2
+  "$run" "$bin/gplan" bench "$config" -o "$dir" --no-plots "$@" || status=$?
+  case $status in
+    0) ;;
+    3) say "$config: a returned path failed the FCL re-check (see $dir/summary.txt)" ;;
+    5) say "$config: a regression against the baseline (see $dir/summary.txt)" ;;
+    *) return "$status" ;;
+  esac
+}
 collision_table() {
   if [ -d "$data/moveit_resources_pr2_description" ]; then
     bench/collision_table.sh -d "$data" "$run" "$bin/gplan"
@@ -221,18 +232,19 @@ for t in "${tables[@]}"; do
       # The plots are drawn on the build machine (gplan bench --report): the GPU
       # machine has no matplotlib.
       for config in seed_collision_queries seed_local_planning seed_pr2; do
-        "$run" "$bin/gplan" bench "config/bench/$config.yaml" -o "$out/$config" --no-plots \
-          || failed+=("$t ($config)")
+        bench_config "config/bench/$config.yaml" "$out/$config" || failed+=("$t ($config)")
       done
       ;;
     regression)
-      "$run" "$bin/gplan" bench config/bench/regression.yaml -o "$out/regression" --no-plots \
+      bench_config config/bench/regression.yaml "$out/regression" \
         --jobs $((cores > 5 ? cores - 4 : 1)) || failed+=("$t")
       ;;
   esac
 done
 
-for f in "$out"/*; do say "$(basename "$f"): $(wc -l < "$f") lines"; done
+for f in "$out"/*; do
+  if [ -d "$f" ]; then say "$(basename "$f")/: $(ls "$f" | wc -l) files"; else say "$(basename "$f"): $(wc -l < "$f") lines"; fi
+done
 if [ ${#failed[@]} -gt 0 ]; then
   say "failed: ${failed[*]}"
   exit 1

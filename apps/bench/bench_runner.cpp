@@ -41,7 +41,7 @@ void send(int fd, char type, const std::string& payload) {
 }
 
 [[noreturn]] void run_worker(int fd, const BenchConfig& config, const gplanner::Scene& scene,
-                             const BenchGroup& group) {
+                             const BenchGroup& group, const std::string& failed_paths_dir) {
   const auto emit = [fd](const BenchRecord& record) {
     std::ostringstream line;
     write_bench_csv_line(line, record);
@@ -51,7 +51,8 @@ void send(int fd, char type, const std::string& payload) {
   const auto should_stop = [] { return interrupted(); };
   try {
     if (config.kind == "planning") {
-      run_planning_group(scene, group.scene_name, config, group.choice, emit, should_stop, notice);
+      run_planning_group(scene, group.scene_name, config, group.choice, emit, should_stop, notice,
+                         failed_paths_dir);
     } else {
       QueryTableOptions options;
       options.queries = config.queries;
@@ -146,7 +147,8 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
                                           const std::vector<BenchGroup>& groups, int jobs,
                                           std::ostream& progress,
                                           const std::function<bool()>& should_stop,
-                                          const std::function<void(const BenchRecord&)>& on_record) {
+                                          const std::function<void(const BenchRecord&)>& on_record,
+                                          const std::string& failed_paths_dir) {
   std::vector<std::vector<BenchRecord>> records(groups.size());
   std::vector<Worker> running;
   std::set<std::string> notices;
@@ -164,7 +166,7 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
     if (pid == 0) {
       ::close(fds[0]);
       for (const Worker& other : running) ::close(other.fd);
-      run_worker(fds[1], config, scenes[groups[g].scene], groups[g]);
+      run_worker(fds[1], config, scenes[groups[g].scene], groups[g], failed_paths_dir);
     }
     ::close(fds[1]);
     Worker worker;

@@ -43,12 +43,14 @@ std::vector<BenchGroup> bench_groups(const BenchConfig& config);
 // Runs every group; returns all records, in the order of `groups` and run. Shows
 // progress on `progress` (a line per run) and hands each record to `on_record` as it
 // comes. `should_stop` (a signal) stops it: running workers are told to stop, and the
-// records so far are returned.
+// records so far are returned. Paths that fail the FCL re-check are kept in
+// `failed_paths_dir`.
 std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
                                           const std::vector<gplanner::Scene>& scenes,
                                           const std::vector<BenchGroup>& groups, int jobs,
                                           std::ostream& progress,
                                           const std::function<bool()>& should_stop,
-                                          const std::function<void(const BenchRecord&)>& on_record);
+                                          const std::function<void(const BenchRecord&)>& on_record,
+                                          const std::string& failed_paths_dir);
 
 }  // namespace gplan

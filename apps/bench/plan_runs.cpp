@@ -10,6 +10,7 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <memory>
 
@@ -17,6 +18,7 @@
 #include "gplanner/planner/checkers/checker_factory.h"
 #include "gplanner/planner/checkers/fcl_checker.h"
 #include "gplanner/planner/ompl/motion_validator.h"
+#include "gplanner/planner/output/path_file.h"
 #include "gplanner/planner/ompl/state_space.h"
 #include "gplanner/planner/ompl/state_validity_checker.h"
 #include "gplanner/planner/planning/neighbor_finder.h"
@@ -50,18 +52,46 @@ std::vector<float> path_rows(const gplanner::Scene& scene, const og::PathGeometr
   return rows;
 }
 
+// Where a run's path that failed the re-check is kept (empty: not kept).
+struct FailedPaths {
+  std::string dir, scene_name, label;
+};
+
 void recheck(const gplanner::Scene& scene, const BenchConfig& config,
-             const std::vector<float>& path, bool to_goal, BenchRecord* record) {
+             const std::vector<float>& path, bool to_goal, const FailedPaths& keep, int run,
+             BenchRecord* record) {
   const std::string problem =
       gplanner::path_recheck_problem(scene, path, config.recheck_refinement, to_goal);
   record->path_check = problem.empty() ? "pass" : "fail";
-  if (!problem.empty()) record->note = "FCL re-check: " + problem;
+  if (problem.empty()) return;
+  record->note = "FCL re-check: " + problem;
+  if (config.recheck_refinement > 1) {
+    const bool coarse = gplanner::path_recheck_problem(scene, path, 1, to_goal).empty();
+    record->note += coarse ? "; free at the planner's own resolution (a collision between its samples)"
+                           : "; in collision at the planner's own resolution too";
+  }
+  if (keep.dir.empty()) return;
+  const std::string name = keep.scene_name + "." + keep.label + ".run" + std::to_string(run) + ".yaml";
+  try {
+    std::filesystem::create_directories(keep.dir);
+    gplanner::PlanResult result;
+    result.solved = to_goal;
+    result.path = path;
+    result.length = std::isfinite(record->simplified_length) ? record->simplified_length : record->length;
+    gplanner::write_path_file((std::filesystem::path(keep.dir) / name).string(), scene, result,
+                              keep.label, record->checker);
+    record->note += "; the path: " + (std::filesystem::path(keep.dir).filename() / name).string();
+  } catch (const std::exception& e) {
+    record->note += std::string("; the path could not be kept: ") + e.what();
+  }
 }
 
 BenchRecord run_ompl(const gplanner::Scene& scene, const BenchConfig& config,
-                     const PlannerChoice& choice, std::uint64_t seed,
-                     gplanner::CollisionChecker* plugin, const std::function<bool()>& should_stop) {
+                     const PlannerChoice& choice, std::uint64_t seed, int run,
+                     gplanner::CollisionChecker* plugin, const std::function<bool()>& should_stop,
+                     const FailedPaths& keep) {
   BenchRecord record;
+  record.checker = choice.checker;
   seed_ompl(seed);
   gplanner::FclChecker fcl(scene, /*threads=*/1);
   gplanner::CollisionChecker* checker = plugin ? plugin : &fcl;
@@ -106,7 +136,8 @@ BenchRecord run_ompl(const gplanner::Scene& scene, const BenchConfig& config,
       record.simplify_time_s = setup.getLastSimplificationTime();
       record.simplified_length = setup.getSolutionPath().length();
     }
-    recheck(scene, config, path_rows(scene, setup.getSolutionPath()), record.solved, &record);
+    recheck(scene, config, path_rows(scene, setup.getSolutionPath()), record.solved, keep, run,
+            &record);
   }
   ob::PlannerData data(si);
   setup.getPlannerData(data);
@@ -116,10 +147,11 @@ BenchRecord run_ompl(const gplanner::Scene& scene, const BenchConfig& config,
 }
 
 BenchRecord run_ours(const gplanner::Scene& scene, const BenchConfig& config,
-                     const PlannerChoice& choice, std::uint64_t seed,
+                     const PlannerChoice& choice, std::uint64_t seed, int run,
                      gplanner::CollisionChecker* checker, gplanner::NeighborFinder* neighbors,
-                     const std::function<bool()>& should_stop) {
+                     const std::function<bool()>& should_stop, const FailedPaths& keep) {
   BenchRecord record;
+  record.checker = choice.checker;
   gplanner::PlanOptions options = gplanner::plan_options(scene);
   options.seed = seed;
   options.time_limit_s = config.time_limit_s;
@@ -136,7 +168,7 @@ BenchRecord run_ours(const gplanner::Scene& scene, const BenchConfig& config,
   if (result.solved) {
     record.length = result.length_before_shortcut;
     record.simplified_length = result.length;
-    recheck(scene, config, result.path, true, &record);
+    recheck(scene, config, result.path, true, keep, run, &record);
   }
   record.checks = static_cast<long long>(result.states_checked + result.samples_checked);
   record.graph_states = static_cast<long long>(result.milestones);
@@ -149,7 +181,9 @@ void run_planning_group(const gplanner::Scene& scene, const std::string& scene_n
                         const BenchConfig& config, const PlannerChoice& choice,
                         const std::function<void(const BenchRecord&)>& emit,
                         const std::function<bool()>& should_stop,
-                        const std::function<void(const std::string&)>& notice) {
+                        const std::function<void(const std::string&)>& notice,
+                        const std::string& failed_paths_dir) {
+  const FailedPaths keep{failed_paths_dir, scene_name, choice.label()};
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   // The group's checker: ours and the OMPL plugin share one across runs (made once, as
   // a user's program would); OMPL with FCL makes its one-thread FCL checker per run.
@@ -177,9 +211,10 @@ void run_planning_group(const gplanner::Scene& scene, const std::string& scene_n
     reset_peak_memory();
     BenchRecord record;
     try {
-      record = choice.ours() ? run_ours(scene, config, choice, seed, checker.get(),
-                                        neighbors.get(), should_stop)
-                             : run_ompl(scene, config, choice, seed, checker.get(), should_stop);
+      record = choice.ours() ? run_ours(scene, config, choice, seed, run, checker.get(),
+                                        neighbors.get(), should_stop, keep)
+                             : run_ompl(scene, config, choice, seed, run, checker.get(),
+                                        should_stop, keep);
     } catch (const std::exception& e) {
       record = BenchRecord{};
       record.status = "error";

@@ -11,7 +11,9 @@
 // and batched motion validator on a backend (@cpu, @gpu: the OMPL plugin). After a solve
 // OMPL's planners simplify the path (simplifySolution, timed apart, as OMPL's Benchmark
 // does); ours shortcut within their own time. Every returned path is re-checked with FCL
-// at a finer resolution (gplanner::path_recheck_problem).
+// at a finer resolution (gplanner::path_recheck_problem); one that fails is also checked
+// at the planner's own resolution (is the collision between its samples?), and written
+// as a path file into `failed_paths_dir` (when not empty) for a closer look.
 
 #include <functional>
 #include <string>
@@ -34,6 +36,7 @@ void run_planning_group(const gplanner::Scene& scene, const std::string& scene_n
                         const BenchConfig& config, const PlannerChoice& choice,
                         const std::function<void(const BenchRecord&)>& emit,
                         const std::function<bool()>& should_stop,
-                        const std::function<void(const std::string&)>& notice);
+                        const std::function<void(const std::string&)>& notice,
+                        const std::string& failed_paths_dir);
 
 }  // namespace gplan

@@ -51,6 +51,7 @@ OTHER_COLOURS = ["#762a83", "#e08214", "#8c510a", "#01665e", "#4d4d4d"]
 SHORTEST_TIME_S = 1e-6  # times below it (a log axis has no 0) are drawn at it
 OVERVIEW = "plan_times"
 LEGEND_HEIGHT_IN = 0.6  # the planning figures' legend, below the panels
+TITLE_HEIGHT_IN = 0.35  # inches above the panels for the figure's title
 
 
 class BadCsv(Exception):
@@ -305,7 +306,8 @@ def draw_planning(experiment, runs, out_dir):
         axes.set_xlabel("plan time (s)")
         figure.suptitle(title, fontsize=11)
         planning_legend(figure, scene_runs)
-        figure.tight_layout(rect=(0, LEGEND_HEIGHT_IN / figure.get_figheight(), 1, 1))
+        figure.tight_layout(rect=(0, LEGEND_HEIGHT_IN / figure.get_figheight(),
+                                  1, 1 - TITLE_HEIGHT_IN / figure.get_figheight()))
         save(figure, out_dir, file_stem(scene))
 
     heights = [0.9 + row_height * len(planning_groups([r for r in runs if r.scene == s]))
@@ -318,7 +320,9 @@ def draw_planning(experiment, runs, out_dir):
     panels[-1, 0].set_xlabel("plan time (s)")
     figure.suptitle(title + ", every scene", fontsize=11)
     planning_legend(figure, runs)
-    figure.tight_layout(rect=(0, LEGEND_HEIGHT_IN / figure.get_figheight(), 1, 1))
+    # The title's own band at the top: tight_layout does not keep the panels out of it.
+    figure.tight_layout(rect=(0, LEGEND_HEIGHT_IN / figure.get_figheight(),
+                              1, 1 - TITLE_HEIGHT_IN / figure.get_figheight()))
     save(figure, out_dir, OVERVIEW)
 
 

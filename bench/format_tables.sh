@@ -5,23 +5,23 @@
 #
 # usage: bench/format_tables.sh DIR [TABLE...]
 #   TABLE: collision (with DIR/peak.json: the work at peak rates too), agreement,
-#   gpu-tests, plan, knn, plugin; default: every one whose files DIR holds.
-#   peak, which reproduce.sh runs apart, is printed with collision.
+#   gpu-tests, knn, time-limit; default: every one whose files DIR holds.
+#   peak, which reproduce.sh runs apart, is printed with collision. The tables of gplan
+#   bench's folders (seed-tables, regression, plan) come from
+#   bench/format_bench_tables.py.
 set -euo pipefail
 [ $# -ge 1 ] || { sed -n '2,9s/^# \{0,1\}//p' "$0"; exit 2; }
 dir=${1%/}
 shift
 bench=$(cd "$(dirname "$0")" && pwd)
-all=(collision agreement gpu-tests plan knn time-limit plugin)
+all=(collision agreement gpu-tests knn time-limit)
 files() {  # the files a table is made from
   case $1 in
     collision) echo table.jsonl ;;
     agreement) echo agreement.jsonl ;;
     gpu-tests) echo gpu_tests.txt ;;
-    plan) echo ours.jsonl ompl.jsonl ;;
     knn) echo knn.jsonl ;;
     time-limit) echo time_limit.jsonl ;;
-    plugin) echo plugin.jsonl ;;
     peak) echo peak.json ;;
     *) echo "format_tables.sh: no table named '$1'; the tables are: ${all[*]}" >&2; return 2 ;;
   esac
@@ -75,18 +75,12 @@ for t in "${tables[@]}"; do
     gpu-tests)
       echo "$t (${paths[*]}):"; echo
       python3 "$bench/format_gpu_tests.py" "${paths[0]}" ;;
-    plan)
-      echo "$t (${paths[*]}):"; echo
-      python3 "$bench/format_plan_table.py" --only main "${paths[@]}" ;;
     knn)
       echo "$t (${paths[*]}):"; echo
       python3 "$bench/format_knn_table.py" "${paths[0]}" ;;
     time-limit)
       echo "$t (${paths[*]}):"; echo
       python3 "$bench/format_time_limit_table.py" "${paths[0]}" ;;
-    plugin)
-      echo "$t (${paths[*]}):"; echo
-      python3 "$bench/format_plan_table.py" --only plugin "${paths[@]}" ;;
   esac
   echo
 done

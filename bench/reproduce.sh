@@ -6,8 +6,8 @@
 # 1. On the build machine (Debian 12), from the repository root:
 #      cmake -B build -DCMAKE_CUDA_ARCHITECTURES=90 && cmake --build build -j
 #      bench/reproduce.sh --bundle [BUILD_DIR]        (BUILD_DIR: default build)
-#    --bundle packs into .gpu/ the six programs the tables use (BUILD_DIR/apps/gplan,
-#    BUILD_DIR/bench/gplanner_{plan_bench,knn_bench,peak_rates},
+#    --bundle packs into .gpu/ the programs the tables use (BUILD_DIR/apps/gplan,
+#    BUILD_DIR/bench/gplanner_{knn_bench,peak_rates,thread_scaling},
 #    BUILD_DIR/tests/gplanner_{tests,stability_tests}) with the real PR2 and Talos
 #    data from ../shared/data, and writes the commit to .gpu/commit ("-dirty" when
 #    tracked files differ from it). .gpu/ must travel with the checkout.
@@ -20,17 +20,15 @@
 #                 packet, balanced, cpu and fcl, medians of 5 calls
 #      agreement  gpu (each traversal) and cpu against fcl,           agreement.jsonl
 #                 100,000 configurations per scene
-#      plan       ours (lazy PRM, PRM) on cores 0-3 beside OMPL's     ours.jsonl,
-#                 LazyPRM, PRM, RRTConnect with FCL on the others     ompl.jsonl
+#      plan       gplan bench config/bench/plan_times.yaml: ours      plan_times/
+#                 (lazy PRM, PRM) against OMPL's LazyPRM, PRM,
+#                 RRTConnect with FCL, 10 runs of up to 60 s
 #      knn        100,000 piano milestones, k = 15: GPU, CPU, GNAT    knn.jsonl
 #      time-limit gplan plan on every shipped scene, gpu and cpu,     time_limit.jsonl
 #                 --time-limit 1 with the scene's milestones and with
 #                 --milestones 10000000: wall time, setup, planning
 #      hostile    the hostile-input catalogue through gplan (issue  hostile.txt
 #                 19), its plan cases on the gpu backend
-#      plugin     OMPL's planners with FCL beside the same planners   plugin.jsonl
-#                 with our GPU checker (PLUGIN_SCENES, default
-#                 "pr2_base_arm humanoid helicopter pr2_reach piano")
 #      seed-tables the seed's three tables through gplan bench     seed_collision_queries/,
 #                 (config/bench/seed_*.yaml)                          seed_local_planning/,
 #                                                                     seed_pr2/
@@ -42,10 +40,11 @@
 #    other tables still run). Where one command may run at most 10 minutes, split the
 #    tables over calls as the runs in RESULTS.md were split:
 #      bench/reproduce.sh OUT_DIR gpu-tests peak collision agreement
-#      bench/reproduce.sh OUT_DIR plan knn
-#      timeout 590 bench/reproduce.sh OUT_DIR plugin
-#    (the plugin's table at 173b0cf was cut at 575 s, during the piano; what was written
-#    before the cut stays in plugin.jsonl).
+#      bench/reproduce.sh OUT_DIR knn time-limit hostile
+#      bench/reproduce.sh OUT_DIR seed-tables
+#      bench/reproduce.sh OUT_DIR regression
+#      timeout 590 bench/reproduce.sh OUT_DIR plan   (more than 10 minutes: the runs
+#      done stay in OUT_DIR/plan_times/results.partial.csv)
 # 3. Back on the build machine: copy OUT_DIR to bench/runs/NAME/ and print the tables
 #    with bench/format_tables.sh bench/runs/NAME [TABLE...].
 #
@@ -60,7 +59,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 if [ "${1:-}" = --bundle ]; then
   build=${2:-build}
   cd "$root"
-  programs=(apps/gplan bench/gplanner_plan_bench bench/gplanner_knn_bench
+  programs=(apps/gplan bench/gplanner_knn_bench
             bench/gplanner_peak_rates bench/gplanner_thread_scaling tests/gplanner_tests
             tests/gplanner_stability_tests)
   # gpu-bundle takes its options before the programs.
@@ -81,7 +80,7 @@ case ${1:-} in ''|-h|--help) usage; exit 2 ;; esac
 mkdir -p "$1"
 out=$(cd "$1" && pwd)
 shift
-all=(gpu-tests peak collision agreement plan knn time-limit hostile plugin seed-tables regression)
+all=(gpu-tests peak collision agreement knn time-limit hostile seed-tables regression plan)
 tables=("$@")
 [ ${#tables[@]} -gt 0 ] || tables=("${all[@]}")
 for t in "${tables[@]}"; do
@@ -101,11 +100,6 @@ data=$bundle/data
 export GPLANNER_SHARED_DATA=$data                # tests that read the real PR2 and Talos
 export GPLANNER_GPLAN="$run $bin/gplan"          # tests that start gplan
 cores=$(nproc)
-pin() {  # pin to cores where taskset exists
-  local c=$1
-  shift
-  if command -v taskset >/dev/null; then taskset -c "$c" "$@"; else "$@"; fi
-}
 
 {
   nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>/dev/null || echo "no nvidia-smi"
@@ -181,24 +175,8 @@ for t in "${tables[@]}"; do
       AGREEMENT=1 collision_table > "$out/agreement.jsonl" || failed+=("$t")
       ;;
     plan)
-      # As at a9f7b2e: 10 runs of at most 60 s per planner and scene; a planner stops
-      # starting runs after BUDGET seconds (ours 60, OMPL's 120). Ours alone on cores
-      # 0-3; OMPL's single-threaded processes on the other cores, one a core.
-      if [ "$cores" -ge 6 ]; then
-        ours_cores=0-3 ompl_cores=4-$((cores - 1)) ompl_jobs=$((cores - 4))
-      else
-        say "plan: only $cores CPUs (the table was measured with 16): ours and OMPL's share them"
-        ours_cores=0-$((cores - 1)) ompl_cores=0-$((cores - 1)) ompl_jobs=$cores
-      fi
-      say "plan: ours on cores $ours_cores, OMPL's planners on cores $ompl_cores, $ompl_jobs at a time"
-      OMPL_PLANNERS="ompl-lazyprm ompl-prm ompl-rrtconnect" RUNS=10 LIMIT=60 BUDGET=120 \
-        OMPL_CORES=$ompl_cores OMPL_JOBS=$ompl_jobs \
-        bench/plan_table.sh ompl "$run" "$bin/gplanner_plan_bench" > "$out/ompl.jsonl" &
-      ompl=$!
-      RUNS=10 LIMIT=60 BUDGET=60 pin "$ours_cores" bench/plan_table.sh ours "$run" "$bin/gplanner_plan_bench" \
-        > "$out/ours.jsonl" || failed+=("plan (ours)")
-      say "plan: ours done; waiting for OMPL's planners"
-      wait "$ompl" || failed+=("plan (ompl)")
+      bench_config config/bench/plan_times.yaml "$out/plan_times" \
+        --jobs $((cores > 5 ? cores - 4 : 1)) || failed+=("$t")
       ;;
     knn)
       "$run" "$bin/gplanner_knn_bench" > "$out/knn.jsonl" || failed+=("$t")
@@ -209,24 +187,6 @@ for t in "${tables[@]}"; do
     hostile)
       gtest gplanner_tests --gtest_filter='*HostileCatalogue*' > "$out/hostile.txt" || failed+=("$t")
       grep -E '^\[  (PASSED|FAILED) +\]' "$out/hostile.txt" >&2 || true
-      ;;
-    plugin)
-      # As at 173b0cf: 10 runs of at most 30 s; the plugin's runs one after another on
-      # cores 0-1 (budget 40 s per planner and scene), OMPL's with FCL beside them on
-      # the other cores (budget 60 s).
-      scenes=${PLUGIN_SCENES:-"pr2_base_arm humanoid helicopter pr2_reach piano"}
-      if [ "$cores" -ge 4 ]; then
-        plugin_cores=0-1 ompl_cores=2-$((cores - 1)) ompl_jobs=$((cores - 2))
-      else
-        say "plugin: only $cores CPUs (the table was measured with 16): the plugin and OMPL's share them"
-        plugin_cores=0-$((cores - 1)) ompl_cores=0-$((cores - 1)) ompl_jobs=$cores
-      fi
-      say "plugin: $scenes; the plugin's runs on cores $plugin_cores, OMPL's with FCL on cores $ompl_cores"
-      SCENES=$scenes PLUGIN_SCENES=$scenes OMPL_PLANNERS="ompl-lazyprm ompl-prm ompl-rrtconnect" \
-        RUNS=10 LIMIT=30 BUDGET=60 PLUGIN_BUDGET=40 PLUGIN_CORES=$plugin_cores \
-        OMPL_CORES=$ompl_cores OMPL_JOBS=$ompl_jobs \
-        bench/plan_table.sh ompl+plugin "$run" "$bin/gplanner_plan_bench" > "$out/plugin.jsonl" \
-        || failed+=("$t")
       ;;
     seed-tables)
       # The plots are drawn on the build machine (gplan bench --report): the GPU

@@ -1,0 +1,121 @@
+#!/usr/bin/env python3
+"""The Markdown tables of bench/RESULTS.md from gplan bench's results.csv files.
+
+usage: bench/format_bench_tables.py seed RUN_DIR      the seed's three tables (RUN_DIR holds
+                                                     seed_collision_queries/, seed_local_planning/,
+                                                     seed_pr2/)
+       bench/format_bench_tables.py regression DIR   a planning run: median (solved/runs) per
+                                                     scene and planner@checker
+"""
+import csv
+import statistics
+import sys
+
+# Pan & Manocha's figures (GTX 480, 2010): basic / packet / balanced, ms.
+SEED_QUERIES = {"piano": (224, 130, 3.7), "large_piano": (710, 529, 15.1),
+                "helicopter": (272, 226, 2.3), "humanoid": (2316, 1823, 126)}
+SEED_LOCAL = {"piano": (2076, 1344, 34), "large_piano": (7587, 6091, 66),
+              "helicopter": (7413, 4645, 41), "humanoid": (8650, 8837, 1964)}
+SEED_PR2 = {"collision-queries": (15952, 392), "local-planning": (643194, 6803)}
+
+
+def read(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def groups(rows):
+    out = {}
+    for r in rows:
+        out.setdefault((r["scene"], r["planner"], r["checker"]), []).append(r)
+    return out
+
+
+def ms(seconds):
+    value = seconds * 1000
+    return "%.3g ms" % value if value < 100 else "{:,.0f} ms".format(value)
+
+
+def median_time(rows):
+    return statistics.median(float(r["time_s"]) for r in rows if r["time_s"])
+
+
+def query_table(directory, table, seed):
+    g = groups(read(directory + "/results.csv"))
+    scenes = []
+    for scene, planner, _ in g:
+        if planner == table and scene not in scenes:
+            scenes.append(scene)
+    work = "configurations" if table == "collision-queries" else "edges"
+    print("| scene | %s | gpu basic | gpu packet | gpu balanced | cpu (all cores) | fcl (all cores) "
+          "| balanced vs basic | balanced vs fcl | seed (GTX 480): basic / packet / balanced "
+          "| seed: balanced vs basic |" % work)
+    print("|" + " --- |" * 11)
+    for scene in scenes:
+        t = {c: median_time(g[(scene, table, c)]) for c in
+             ("gpu-basic", "gpu-packet", "gpu-balanced", "cpu", "fcl") if (scene, table, c) in g}
+        n = g[(scene, table, "fcl")][0]["work"]
+        s = seed.get(scene)
+        print("| %s | {:,} | %s | %s | %s | %s | %s | %.1fx | %.0fx | %s | %s |".format(int(n)) % (
+            scene, ms(t["gpu-basic"]), ms(t["gpu-packet"]), ms(t["gpu-balanced"]), ms(t["cpu"]),
+            ms(t["fcl"]), t["gpu-basic"] / t["gpu-balanced"], t["fcl"] / t["gpu-balanced"],
+            "%s / %s / %s ms" % s if s else "-", "%.0fx" % (s[0] / s[2]) if s else "-"))
+
+
+def pr2_table(directory):
+    g = groups(read(directory + "/results.csv"))
+    print("| pr2_reach (15 DOF, self-collision) | work | cpu, ours (all cores) | fcl (all cores) "
+          "| gpu balanced | gpu vs ours on the cpu | gpu vs fcl | seed: CPU / GPU | seed: ratio |")
+    print("|" + " --- |" * 9)
+    for table, name in (("collision-queries", "milestone computation"),
+                        ("local-planning", "local planning")):
+        t = {c: median_time(g[("pr2_reach", table, c)]) for c in ("cpu", "fcl", "gpu-balanced")}
+        n = int(g[("pr2_reach", table, "fcl")][0]["work"])
+        s = SEED_PR2[table]
+        print("| %s | {:,} %s | %s | %s | %s | %.0fx | %.0fx | {:,} / {:,} ms | %.0fx |".format(n, *s) % (
+            name, "configurations" if table == "collision-queries" else "edges", ms(t["cpu"]),
+            ms(t["fcl"]), ms(t["gpu-balanced"]), t["cpu"] / t["gpu-balanced"],
+            t["fcl"] / t["gpu-balanced"], s[0] / s[1]))
+
+
+def regression(directory):
+    rows = read(directory + "/results.csv")
+    g = groups(rows)
+    scenes, labels = [], []
+    for scene, planner, checker in g:
+        if scene not in scenes:
+            scenes.append(scene)
+        if planner + "@" + checker not in labels:
+            labels.append(planner + "@" + checker)
+    print("| scene | " + " | ".join(labels) + " |")
+    print("|" + " --- |" * (len(labels) + 1))
+    for scene in scenes:
+        cells = []
+        for label in labels:
+            planner, checker = label.split("@")
+            runs = g.get((scene, planner, checker), [])
+            if not runs:
+                cells.append("-")
+                continue
+            solved = sum(r["solved"] == "1" for r in runs)
+            times = sorted((float(r["time_s"]), r["solved"] == "1") for r in runs if r["time_s"])
+            median = statistics.median(t for t, _ in times)
+            bound = ">" if sum(not s for _, s in times) * 2 >= len(times) else ""
+            failed = sum(r["path_check"] == "fail" for r in runs)
+            cells.append("%s%.3g s, %d/%d%s" % (bound, median, solved, len(runs),
+                                                 ", **%d failed re-check**" % failed if failed else ""))
+        print("| %s | %s |" % (scene, " | ".join(cells)))
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3 or sys.argv[1] not in ("seed", "regression"):
+        sys.exit(__doc__)
+    if sys.argv[1] == "seed":
+        print("Table 1: collision queries\n")
+        query_table(sys.argv[2] + "/seed_collision_queries", "collision-queries", SEED_QUERIES)
+        print("\nTable 2: local planning\n")
+        query_table(sys.argv[2] + "/seed_local_planning", "local-planning", SEED_LOCAL)
+        print("\nTable 3: the PR2\n")
+        pr2_table(sys.argv[2] + "/seed_pr2")
+    else:
+        regression(sys.argv[2])

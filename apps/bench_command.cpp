@@ -1,13 +1,11 @@
 #include "bench_command.h"
 
-#include <unistd.h>
 
 #include <chrono>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <sstream>
 
 #include "bench/bench_baseline.h"

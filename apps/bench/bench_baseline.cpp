@@ -51,14 +51,7 @@ void save_baseline(const std::string& file, const std::string& config_file,
 }
 
 std::vector<GroupSummary> load_baseline(const std::string& file) {
-  const std::string text = gplanner::read_input_file(file, kBaselineFile, {file, 0, ""});
-  gplanner::check_yaml_structure(text, file, "");
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw gplanner::InputError({file, e.mark.line + 1, "yaml"}, "malformed YAML: " + e.msg);
-  }
+  const YAML::Node root = gplanner::load_checked_yaml(file, kBaselineFile, "");
   const gplanner::YamlReader in(file);
   in.expect_map(root, "", {"gplan_bench_baseline", "config", "groups"});
   const YAML::Node format = in.required(root, "", "gplan_bench_baseline");

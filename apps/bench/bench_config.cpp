@@ -118,14 +118,7 @@ std::string fallback_refusal(const std::string& checker, const std::string& noti
 }
 
 BenchConfig load_bench_config(const std::string& file) {
-  const std::string text = gplanner::read_input_file(file, kBenchConfigFile, {file, 0, ""});
-  gplanner::check_yaml_structure(text, file, "");
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw InputError({file, e.mark.line + 1, "yaml"}, "malformed YAML: " + e.msg);
-  }
+  const YAML::Node root = gplanner::load_checked_yaml(file, kBenchConfigFile, "");
   const YamlReader in(file);
   BenchConfig config;
   config.file = file;

@@ -543,14 +543,7 @@ Eigen::AlignedBox3d Scene::bounds_S() const {
 }
 
 Scene load_scene(const std::string& path) {
-  const std::string text = read_input_file(path, kSceneFile, {path, 0, ""});
-  check_yaml_structure(text, path, "planner");
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw InputError({path, e.mark.line + 1, "yaml"}, "malformed YAML: " + e.msg);
-  }
+  const YAML::Node root = load_checked_yaml(path, kSceneFile, "planner");
   const YamlReader in(path);
   Scene scene;
   scene.file = path;

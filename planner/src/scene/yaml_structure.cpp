@@ -196,4 +196,15 @@ void check_yaml_structure(const std::string& text, const std::string& path,
   }
 }
 
+YAML::Node load_checked_yaml(const std::string& path, const InputFileKind& kind,
+                             const std::string& settings_key) {
+  const std::string text = read_input_file(path, kind, {path, 0, ""});
+  check_yaml_structure(text, path, settings_key);
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError({path, e.mark.line + 1, "yaml"}, "malformed YAML: " + e.msg);
+  }
+}
+
 }  // namespace gplanner

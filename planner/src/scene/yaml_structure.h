@@ -3,7 +3,11 @@
 // is built (private to the scene loader and gplan bench configurations).
 
 #include <cstdint>
+#include <yaml-cpp/yaml.h>
+
 #include <string>
+
+#include "gplanner/planner/scene/input_file.h"
 
 namespace gplanner {
 
@@ -18,5 +22,11 @@ inline constexpr std::uint64_t kMaxExpandedYamlNodes = 1000000;
 // YAML" with what yaml-cpp says.
 void check_yaml_structure(const std::string& text, const std::string& path,
                           const std::string& settings_key);
+
+// The YAML document in the file at `path`: read through read_input_file (a regular file
+// of `kind`), checked by check_yaml_structure, then parsed; every problem an InputError
+// naming the file (and the line where yaml-cpp says it).
+YAML::Node load_checked_yaml(const std::string& path, const InputFileKind& kind,
+                             const std::string& settings_key);
 
 }  // namespace gplanner

@@ -1,6 +1,5 @@
 #include "bench_command.h"
 
-
 #include <chrono>
 #include <ctime>
 #include <filesystem>

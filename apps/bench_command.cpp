@@ -15,6 +15,7 @@
 #include "bench/bench_summary.h"
 #include "bench/ompl_log.h"
 #include "command_line.h"
+#include "gplanner/planner/checkers/fcl_checker.h"
 #include "gplanner/planner/output/atomic_file.h"
 #include "gplanner/planner/output/output_paths.h"
 #include "gplanner/planner/output/text_escaping.h"
@@ -40,25 +41,36 @@ std::string timestamp(const char* format) {
   return text;
 }
 
-// The output folder: a new one, or an empty one; never a folder with files in it (a
-// previous run's results are not replaced).
-void prepare_output_folder(const std::string& dir) {
+// The output folder must be a new one or an empty one, never a folder with files in it
+// (an earlier run's results are not replaced), and it must be possible to make files
+// there: checked before any work, the folder made only once the inputs have loaded (a
+// refused run leaves nothing behind).
+void check_output_folder(const std::string& dir) {
+  if (dir.empty()) throw UsageError("--out: an empty name; name a new folder for the results");
   std::error_code error;
-  const fs::file_status status = fs::symlink_status(dir, error);
-  if (fs::exists(status)) {
+  if (fs::exists(fs::symlink_status(dir, error))) {
     if (!fs::is_directory(fs::status(dir, error)))
       throw UsageError("--out " + dir + ": is not a folder; name a new folder for the results");
     if (!fs::is_empty(dir, error))
       throw UsageError("--out " + dir + ": the folder has files in it; name a new or empty folder "
                        "(the results of an earlier run are not replaced)");
-  } else {
-    fs::create_directories(dir, error);
-    if (error)
-      throw UsageError("--out " + dir + ": cannot be made (" + error.message() +
-                       "); name a folder that can be created");
+    gplanner::writable_output_target("--out", (fs::path(dir) / "results.csv").string());
+    return;
   }
-  // A probe, as for any output: a file can really be made there.
-  gplanner::writable_output_target("--out", (fs::path(dir) / "results.csv").string());
+  // A new folder (and any new folders above it): a file can be made in the nearest
+  // existing one.
+  fs::path existing = fs::absolute(dir, error).parent_path();
+  while (!existing.empty() && !fs::exists(existing, error) && existing != existing.root_path())
+    existing = existing.parent_path();
+  gplanner::writable_output_target("--out", (existing / fs::path(dir).filename()).string());
+}
+
+void make_output_folder(const std::string& dir) {
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error)
+    throw UsageError("--out " + dir + ": cannot be made (" + error.message() +
+                     "); name a folder that can be created");
 }
 
 void write_text(const std::string& path, const std::string& text) {
@@ -165,7 +177,9 @@ int run_bench(int argc, char** argv) {
     try {
       records = read_bench_csv(csv);
     } catch (const std::runtime_error& e) {
-      throw gplanner::InputError({csv, 0, ""}, e.what());
+      throw gplanner::InputError({"--report", 0, ""},
+                                 std::string(e.what()) + "; name the folder of a gplan bench run, "
+                                                         "its results.csv as gplan wrote it");
     }
     return conclude(config, records, dir, baseline, save, !args.flag("no-plots"));
   }
@@ -174,7 +188,7 @@ int run_bench(int argc, char** argv) {
       args.text("out", "gplan-bench-" + config.name + "-" + timestamp("%Y%m%d-%H%M%S"));
   for (const auto& scene : config.scenes) inputs.push_back({"a scene of the configuration", scene});
   gplanner::check_output_paths(outputs, inputs);
-  prepare_output_folder(dir);
+  check_output_folder(dir);
 
   // Scenes loaded once, before the workers are forked (they share them).
   const auto start = std::chrono::steady_clock::now();
@@ -184,8 +198,15 @@ int run_bench(int argc, char** argv) {
     scenes.push_back(gplanner::load_scene(file));
     for (const std::string& notice : scenes.back().notices)
       std::cerr << "notice: " << gplanner::terminal_text(notice) << "\n";
+    if (config.kind == "planning") {
+      // A start or goal in collision is the scene's error, said once now (exit 2), not
+      // a failed run in every group.
+      gplanner::FclChecker fcl(scenes.back(), /*threads=*/1);
+      gplanner::check_start_and_goal(scenes.back(), &fcl);
+    }
     if (interrupted()) return report_interruption({}, {"--out " + dir});
   }
+  make_output_folder(dir);
   const std::vector<BenchGroup> groups = bench_groups(config);
   const std::string started = local_date_time();
   // Each record also goes to results.partial.csv as it comes, so that the runs done are

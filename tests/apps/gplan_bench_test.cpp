@@ -2,11 +2,18 @@
 // its stored baseline, a planted regression, a path that fails the FCL re-check, and
 // outputs that must not be written.
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include "bench/bench_baseline.h"
 #include "bench/bench_record.h"
@@ -149,6 +156,78 @@ TEST(GplanBench, RefusesOutputsThatWouldReplaceSomething) {
   // No configuration, or two.
   EXPECT_EQ(run_gplan("bench").exit_code, 2);
   EXPECT_EQ(run_gplan("bench " + bench + " " + bench).exit_code, 2);
+}
+
+// Processes whose command line has `word` in it (zombies excepted).
+int processes_running(const std::string& word) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string pid = entry.path().filename().string();
+    if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string command_line = read_file(entry.path().string() + "/cmdline");
+    std::replace(command_line.begin(), command_line.end(), '\0', ' ');
+    const std::string status = read_file(entry.path().string() + "/stat");
+    const std::size_t state = status.rfind(')');
+    const bool zombie = state != std::string::npos && status.size() > state + 2 && status[state + 2] == 'Z';
+    if (!zombie && command_line.find(word) != std::string::npos) ++count;
+  }
+  return count;
+}
+
+TEST(GplanBench, SigtermStopsEveryWorkerAndKeepsTheRunsDone) {
+  if (std::getenv("GPLANNER_GPLAN") != nullptr) GTEST_SKIP() << "gplan runs through a wrapper";
+  const ScratchFolder folder;
+  // OMPL's RRTConnect with FCL on the piano: no path for many seconds.
+  const std::string bench = folder.write(
+      "bench.yaml", "kind: planning\nscenes: [" + project_root() +
+                        "/scenes/piano.yaml]\nplanners: [ompl-rrtconnect@fcl, ompl-prm@fcl]\n"
+                        "time_limit: 120\n");
+  const std::string out = folder.path() + "/out", log = folder.path() + "/log";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    execl(GPLAN_EXECUTABLE, "gplan", "bench", bench.c_str(), "-o", out.c_str(), "--jobs", "2",
+          "--no-plots", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Until both workers run (their groups announced), then the signal.
+  const auto started = std::chrono::steady_clock::now();
+  while (read_file(log).find("[2/2]") == std::string::npos &&
+         std::chrono::steady_clock::now() - started < std::chrono::seconds(30)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ASSERT_EQ(kill(pid, SIGTERM), 0);
+  const auto sent = std::chrono::steady_clock::now();
+  int status = 0;
+  pid_t ended = 0;
+  while ((ended = waitpid(pid, &status, WNOHANG)) == 0 &&
+         std::chrono::steady_clock::now() - sent < std::chrono::seconds(20)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (ended == 0) {
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    FAIL() << "still running 20 s after SIGTERM:\n" << read_file(log);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  const std::string output = read_file(log);
+  EXPECT_LT(seconds, 2.0) << output;
+  ASSERT_TRUE(WIFEXITED(status)) << output;
+  EXPECT_EQ(WEXITSTATUS(status), 143) << output;
+  EXPECT_NE(output.find("interrupted by SIGTERM; wrote " + out + "/results.partial.csv (the runs done)"),
+            std::string::npos)
+      << output;
+  // No run finished: the partial CSV holds its header alone; nothing else was written.
+  EXPECT_TRUE(read_bench_csv(out + "/results.partial.csv").empty());
+  EXPECT_FALSE(fs::exists(out + "/results.csv"));
+  EXPECT_FALSE(fs::exists(out + "/summary.txt"));
+  // No worker is left behind (workers are forked: their command line is gplan's).
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(processes_running(bench), 0) << "a worker outlived gplan";
 }
 
 }  // namespace

@@ -43,7 +43,8 @@ const char* const kUsage =
     "      writes DIR (default gplan-bench-NAME-DATE-TIME; a new or empty folder):\n"
     "      results.csv, summary.txt (also printed), ompl/SCENE.log (OMPL's benchmark log,\n"
     "      for ompl_benchmark_statistics), plots/ (PNG and SVG, with matplotlib);\n"
-    "      --jobs: OMPL's planners with FCL (one thread each) run N at a time;\n"
+    "      --jobs: OMPL's planners on one thread (@fcl, @gpu) run N at a time, one on\n"
+    "      the GPU; a path failing the re-check is kept in DIR/failed_paths/;\n"
     "      --save-baseline keeps the groups' figures, --baseline compares with them\n"
     "      (exit 5 on a regression beyond the configuration's tolerances); exit 3 when a\n"
     "      returned path fails the fine FCL re-check; --report DIR summarises an earlier\n"
@@ -57,7 +58,8 @@ const char* const kUsage =
     "2 bad input or usage, 3 checkers disagree (check --compare) or a path failed the\n"
     "FCL re-check (bench), 4 no path (plan), 5 a regression against the baseline (bench);\n"
     "SIGINT or SIGTERM stops a run cleanly, writing nothing more and leaving no temporary\n"
-    "file: exit 130 (SIGINT) or 143 (SIGTERM); a second signal ends it at once.\n";
+    "file (bench keeps the runs done in DIR/results.partial.csv): exit 130 (SIGINT) or\n"
+    "143 (SIGTERM); a second signal ends it at once.\n";
 
 namespace {
 

@@ -25,11 +25,13 @@ CpuBatchChecker::CpuBatchChecker(const CollisionModel& model, int threads)
 
 CpuBatchChecker::~CpuBatchChecker() = default;
 
-void CpuBatchChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts) {
+void CpuBatchChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts,
+                            float inflation) {
   Impl& impl = *impl_;
+  const CollisionModelView view = inflated(impl.view, inflation);
   // This call's counts (calls from other threads run at once), published when it ends.
   std::atomic<unsigned long long> bv_tests{0}, triangle_tests{0};
-  const std::size_t width = impl.view.width;
+  const std::size_t width = view.width;
   parallel_for(n, impl.threads, [&](std::size_t begin, std::size_t end, int) {
     detail::Xf X_WL[detail::kMaxLinks];
     // Counted on this thread's stack, added to the call's totals once per chunk: counting
@@ -37,7 +39,7 @@ void CpuBatchChecker::check(const float* configurations, std::size_t n, std::uin
     detail::TraversalCounts counts;
     for (std::size_t i = begin; i < end; ++i) {
       verdicts[i] =
-          detail::query_collides(impl.view, configurations + i * width, X_WL, &counts) ? 1 : 0;
+          detail::query_collides(view, configurations + i * width, X_WL, &counts) ? 1 : 0;
     }
     bv_tests += counts.bv_tests;
     triangle_tests += counts.triangle_tests;

@@ -99,9 +99,10 @@ struct GpuBatchChecker::Impl {
     return std::max<std::size_t>(1, std::min(n, fit));
   }
 
-  void check(const float* h_q, std::size_t n, std::uint8_t* h_verdicts) {
+  void check(const float* h_q, std::size_t n, std::uint8_t* h_verdicts, float inflation) {
     stats = {};
     if (n == 0) return;
+    const CollisionModelView call_view = inflated(view, inflation);
     const bool is_balanced = options.traversal == Traversal::kBalanced;
     const std::size_t width = view.width;
     const std::size_t per_query = width * sizeof(float) + 1 + 4 * sizeof(unsigned);
@@ -124,10 +125,10 @@ struct GpuBatchChecker::Impl {
                  "upload configurations");
       const int m = static_cast<int>(count);
       if (options.traversal == Traversal::kBasic) {
-        traversals::run_basic(view, configurations.get(), m, verdicts.get(), counts.get());
+        traversals::run_basic(call_view, configurations.get(), m, verdicts.get(), counts.get());
       } else if (options.traversal == Traversal::kPacket) {
-        packet.run(view, configurations.get(), m, verdicts.get(), counts.get());
-      } else if (!balanced->run(view, configurations.get(), m, verdicts.get(), counts.get(),
+        packet.run(call_view, configurations.get(), m, verdicts.get(), counts.get());
+      } else if (!balanced->run(call_view, configurations.get(), m, verdicts.get(), counts.get(),
                                 options.warp_per_pair_up_to, &stats)) {
         if (chunk == 1)
           throw std::runtime_error("balanced traversal: one query needs more jobs than fit");
@@ -158,9 +159,10 @@ GpuBatchChecker::GpuBatchChecker(const CollisionModel& model, const GpuCheckerOp
 
 GpuBatchChecker::~GpuBatchChecker() = default;
 
-void GpuBatchChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts) {
+void GpuBatchChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts,
+                            float inflation) {
   const std::lock_guard<std::mutex> lock(impl_->mutex);
-  impl_->check(configurations, n, verdicts);
+  impl_->check(configurations, n, verdicts, inflation);
   const std::lock_guard<std::mutex> stats_lock(impl_->stats_mutex);
   impl_->last_stats = impl_->stats;
 }

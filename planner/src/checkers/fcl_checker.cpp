@@ -259,6 +259,24 @@ void FclChecker::check(const float* configurations, std::size_t n, std::uint8_t*
   });
 }
 
+void FclChecker::check_inflated(const float* configurations, std::size_t n, double inflation,
+                                std::uint8_t* verdicts) {
+  const std::size_t width = impl_->scene.space.width();
+  parallel_for(
+      n, impl_->threads,
+      [&](std::size_t begin, std::size_t end, int) {
+        const auto w = impl_->workspaces.take();
+        for (std::size_t i = begin; i < end; ++i) {
+          const float* q = configurations + i * width;
+          verdicts[i] = impl_->collides(q, &*w) ||
+                                (inflation > 0 && impl_->distance(q, &*w) < inflation)
+                            ? 1
+                            : 0;
+        }
+      },
+      1);
+}
+
 void FclChecker::distance(const float* configurations, std::size_t n, double* distances) {
   const std::size_t width = impl_->scene.space.width();
   parallel_for(

@@ -45,6 +45,16 @@ struct CollisionModelView {
   SolidsView solids;
 };
 
+// The view with the robot grown by `inflation` metres: the leaf threshold raised by it,
+// the bounding-volume margin twice the new threshold (as for the model's own).
+inline CollisionModelView inflated(CollisionModelView view, float inflation) {
+  if (inflation > 0) {
+    view.threshold += inflation;
+    view.margin = 2 * view.threshold;
+  }
+  return view;
+}
+
 // Host-side flat arrays of a model: what the CPU backend reads, and what the GPU
 // backend copies to the device as is.
 struct FlatCollisionModel {

@@ -34,6 +34,13 @@ class CollisionChecker {
   // on every backend: never free, and no exception in the middle of a batch.
   virtual void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) = 0;
 
+  // As check(), with every checked pair (robot and environment, and the link pairs
+  // checked for self-collision) held to a clearance: 1 also where a pair comes closer
+  // than `inflation` metres (>= 0; 0 is check()), up to the tolerance band as check() is.
+  // What certified motions rest on (planner/planning/certified_motions.h).
+  virtual void check_inflated(const float* configurations, std::size_t n, double inflation,
+                              std::uint8_t* verdicts) = 0;
+
   // About how many configurations cost as much to check as one call costs by itself:
   // callers that can check more configurations in fewer calls do so while the extra
   // configurations number fewer than this. 0 for the CPU backends (a call costs little

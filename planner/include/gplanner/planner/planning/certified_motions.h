@@ -16,6 +16,14 @@
 // answers are conservative. With the tolerance band of the checker (a configuration
 // within delta of contact may be reported colliding), "certified free" means: no
 // configuration on the motion brings any checked pair closer than 0 (FCL's distance).
+//
+// Not yet used by the planners (issue 21): the bound is the whole robot's, so a link pair
+// checked for self-collision is held to the clearance of the largest motion of any robot
+// point. Pairs that stay millimetres apart in every configuration (a gripper and its
+// wrist) then never certify, and articulated robots' motions are all refused; per-pair
+// bounds (the joints between the two links only) are the next step. For rigid robots
+// (no link pairs) the clearance is half the segment's bound, and it certifies motions
+// with millimetres to spare (tests/planner/planning/certified_motions_test.cpp).
 
 #include <cstddef>
 #include <cstdint>

@@ -261,18 +261,18 @@ void FclChecker::check(const float* configurations, std::size_t n, std::uint8_t*
 
 void FclChecker::check_inflated(const float* configurations, std::size_t n, double inflation,
                                 std::uint8_t* verdicts) {
+  if (!(inflation > 0)) {
+    check(configurations, n, verdicts);
+    return;
+  }
+  // distance() checks for a collision first (0 then): one call answers both.
   const std::size_t width = impl_->scene.space.width();
   parallel_for(
       n, impl_->threads,
       [&](std::size_t begin, std::size_t end, int) {
         const auto w = impl_->workspaces.take();
-        for (std::size_t i = begin; i < end; ++i) {
-          const float* q = configurations + i * width;
-          verdicts[i] = impl_->collides(q, &*w) ||
-                                (inflation > 0 && impl_->distance(q, &*w) < inflation)
-                            ? 1
-                            : 0;
-        }
+        for (std::size_t i = begin; i < end; ++i)
+          verdicts[i] = impl_->distance(configurations + i * width, &*w) < inflation ? 1 : 0;
       },
       1);
 }

@@ -88,13 +88,13 @@ void recheck(const gplanner::Scene& scene, const BenchConfig& config,
 
 BenchRecord run_ompl(const gplanner::Scene& scene, const BenchConfig& config,
                      const PlannerChoice& choice, std::uint64_t seed, int run,
-                     gplanner::CollisionChecker* plugin, const std::function<bool()>& should_stop,
+                     gplanner::CollisionChecker* checker, const std::function<bool()>& should_stop,
                      const FailedPaths& keep) {
   BenchRecord record;
   record.checker = choice.checker;
   seed_ompl(seed);
-  gplanner::FclChecker fcl(scene, /*threads=*/1);
-  gplanner::CollisionChecker* checker = plugin ? plugin : &fcl;
+  // @fcl: OMPL's own DiscreteMotionValidator; otherwise ours (the plugin).
+  const bool plugin = choice.checker != "fcl";
   og::SimpleSetup setup(gplanner::ompl_adapters::make_state_space(scene));
   const ob::SpaceInformationPtr si = setup.getSpaceInformation();
   auto validity =
@@ -102,7 +102,7 @@ BenchRecord run_ompl(const gplanner::Scene& scene, const BenchConfig& config,
   setup.setStateValidityChecker(validity);
   if (plugin) {
     si->setMotionValidator(
-        std::make_shared<gplanner::ompl_adapters::MotionValidator>(si, scene, plugin));
+        std::make_shared<gplanner::ompl_adapters::MotionValidator>(si, scene, checker));
   }
   ob::ScopedState<> start(si), goal(si);
   gplanner::ompl_adapters::row_to_state(scene, scene.start.data(), start.get());
@@ -185,23 +185,24 @@ void run_planning_group(const gplanner::Scene& scene, const std::string& scene_n
                         const std::string& failed_paths_dir) {
   const FailedPaths keep{failed_paths_dir, scene_name, choice.label()};
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
-  // The group's checker: ours and the OMPL plugin share one across runs (made once, as
-  // a user's program would); OMPL with FCL makes its one-thread FCL checker per run.
+  // The group's checker, made once and shared by its runs (as a user's program would):
+  // OMPL's planners with FCL on the planning thread alone; ours and the plugin on the
+  // named backend.
   std::unique_ptr<gplanner::CollisionChecker> checker;
   std::unique_ptr<gplanner::NeighborFinder> neighbors;
-  std::string ran = "fcl";
-  if (choice.ours() || choice.checker != "fcl") {
+  if (!choice.ours() && choice.checker == "fcl") {
+    checker = std::make_unique<gplanner::FclChecker>(scene, /*threads=*/1);
+  } else {
     std::string fallback;
     checker = gplanner::make_collision_checker(scene, choice.checker, {}, &fallback);
     if (checker->backend() != choice.checker)
       throw std::runtime_error(fallback_refusal(choice.label(), fallback));
-    ran = checker->backend();
-    if (choice.ours()) {
-      std::string knn_notice;
-      neighbors = gplanner::make_neighbor_finder(
-          gplanner::make_metric(scene.space, scene.planner), checker->backend(), &knn_notice);
-      if (!knn_notice.empty()) notice(knn_notice);
-    }
+  }
+  if (choice.ours()) {
+    std::string knn_notice;
+    neighbors = gplanner::make_neighbor_finder(
+        gplanner::make_metric(scene.space, scene.planner), checker->backend(), &knn_notice);
+    if (!knn_notice.empty()) notice(knn_notice);
   }
   double spent = 0;
   for (int run = 0; run < config.runs; ++run) {
@@ -225,7 +226,7 @@ void run_planning_group(const gplanner::Scene& scene, const std::string& scene_n
     record.experiment = config.name;
     record.scene = scene_name;
     record.planner = choice.planner;
-    record.checker = ran;
+    record.checker = checker->backend();
     record.run = run;
     record.seed = seed;
     spent += std::isfinite(record.time_s) ? record.time_s : config.time_limit_s;

@@ -8,6 +8,8 @@
 #include <ostream>
 #include <sstream>
 
+#include "bench/query_runs.h"
+
 namespace gplan {
 namespace {
 
@@ -20,10 +22,6 @@ double quantile(const std::vector<double>& sorted, double p) {
   const std::size_t low = static_cast<std::size_t>(std::floor(at));
   const std::size_t high = std::min(low + 1, sorted.size() - 1);
   return sorted[low] + (at - double(low)) * (sorted[high] - sorted[low]);
-}
-
-bool is_query_table(const std::string& planner) {
-  return planner == "collision-queries" || planner == "local-planning";
 }
 
 std::string seconds(double s) {

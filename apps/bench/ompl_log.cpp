@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "bench/query_runs.h"
 #include "gplanner/planner/output/atomic_file.h"
 #include "gplanner/planner/output/text_escaping.h"
 
@@ -183,7 +184,7 @@ std::vector<LogPlanner> log_planners(const std::vector<BenchRecord>& records) {
   std::vector<LogPlanner> planners;
   std::map<std::pair<std::string, std::string>, std::size_t> index;
   for (const BenchRecord& record : records) {
-    if (record.planner == "collision-queries" || record.planner == "local-planning") continue;
+    if (is_query_table(record.planner)) continue;
     if (!is_planner(record.planner))
       reject(record,
              "the planner is none of ours-lazyprm, ours-prm, ompl-rrtconnect, "

@@ -201,6 +201,10 @@ const std::vector<std::string>& query_tables() {
   return names;
 }
 
+bool is_query_table(const std::string& planner) {
+  return planner == kCollisionQueries || planner == kLocalPlanning;
+}
+
 void run_query_group(const gplanner::Scene& scene, const std::string& experiment,
                      const std::string& scene_name, const std::string& table,
                      const std::string& checker, const QueryTableOptions& options,

@@ -58,5 +58,7 @@ const std::vector<std::string>& query_table_checkers();
 
 // The table names run_query_group accepts: collision-queries, local-planning.
 const std::vector<std::string>& query_tables();
+// Whether a record's planner names one of query_tables() (not a planner).
+bool is_query_table(const std::string& planner);
 
 }  // namespace gplan

@@ -87,7 +87,8 @@ std::string csv_text(const std::vector<BenchRecord>& records) {
 // Summary, verdicts and exit code of a run's records (a new run or --report).
 int conclude(const BenchConfig& config, const std::vector<BenchRecord>& records,
              const std::string& dir, const std::string& baseline_file,
-             const std::string& save_baseline, bool plots) {
+             const std::vector<GroupSummary>& baseline, const std::string& save_baseline,
+             bool plots) {
   const std::vector<GroupSummary> groups = summarize(records);
   std::ostringstream summary;
   summary << "gplan bench " << config.name << " (" << config.kind << ")\n\n";
@@ -106,7 +107,7 @@ int conclude(const BenchConfig& config, const std::vector<BenchRecord>& records,
   bool regressed = false;
   if (!baseline_file.empty()) {
     const BaselineVerdict verdict =
-        compare_with_baseline(groups, load_baseline(baseline_file), config.tolerances);
+        compare_with_baseline(groups, baseline, config.tolerances);
     regressed = verdict.regressed();
     summary << "\nagainst the baseline " << baseline_file << ": "
             << (regressed ? "REGRESSION" : "within tolerance") << "\n";
@@ -123,8 +124,7 @@ int conclude(const BenchConfig& config, const std::vector<BenchRecord>& records,
   }
   if (plots) {
     std::string notice;
-    const std::string plot_dir = (fs::path(dir) / "plots").string();
-    fs::create_directories(plot_dir);
+    const std::string plot_dir = (fs::path(dir) / "plots").string();  // made by the script
     if (draw_bench_plots((fs::path(dir) / "results.csv").string(), plot_dir, &notice)) {
       std::cerr << "plots: " << plot_dir << "\n";
     } else {
@@ -159,15 +159,13 @@ int run_bench(int argc, char** argv) {
 
   // Inputs and outputs checked before any work.
   std::vector<gplanner::NamedFile> inputs{{"the configuration", config_file}};
-  if (!baseline.empty()) {
-    gplanner::check_input_file(baseline, {"baseline", 64 * gplanner::kMiB}, {"--baseline", 0, ""});
-    inputs.push_back({"the --baseline file", baseline});
-  }
+  if (!baseline.empty()) inputs.push_back({"the --baseline file", baseline});
   std::vector<gplanner::NamedFile> outputs;
   if (!save.empty()) outputs.push_back({"--save-baseline", save});
   gplanner::check_output_paths(outputs, inputs);
   const BenchConfig config = load_bench_config(config_file);
-  if (!baseline.empty()) load_baseline(baseline);  // its errors now, not after the runs
+  std::vector<GroupSummary> baseline_groups;  // its errors now, not after the runs
+  if (!baseline.empty()) baseline_groups = load_baseline(baseline);
 
   if (report) {
     const std::string dir = args.text("report", "");
@@ -181,7 +179,8 @@ int run_bench(int argc, char** argv) {
                                  std::string(e.what()) + "; name the folder of a gplan bench run, "
                                                          "its results.csv as gplan wrote it");
     }
-    return conclude(config, records, dir, baseline, save, !args.flag("no-plots"));
+    return conclude(config, records, dir, baseline, baseline_groups, save,
+                    !args.flag("no-plots"));
   }
 
   const std::string dir =
@@ -253,7 +252,7 @@ int run_bench(int argc, char** argv) {
   }
   fs::remove(partial);
   std::cerr << "results: " << dir << "\n";
-  return conclude(config, records, dir, baseline, save, !args.flag("no-plots"));
+  return conclude(config, records, dir, baseline, baseline_groups, save, !args.flag("no-plots"));
 }
 
 }  // namespace gplan

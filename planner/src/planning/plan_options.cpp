@@ -20,4 +20,19 @@ PlanOptions plan_options(const Scene& scene) {
   return options;
 }
 
+const char* edge_checks_name(EdgeChecks edges) {
+  return edges == EdgeChecks::kCertified ? "certified" : "sampled";
+}
+
+bool parse_edge_checks(const std::string& name, EdgeChecks* edges) {
+  if (name == "sampled") {
+    *edges = EdgeChecks::kSampled;
+  } else if (name == "certified") {
+    *edges = EdgeChecks::kCertified;
+  } else {
+    return false;
+  }
+  return true;
+}
+
 }  // namespace gplanner

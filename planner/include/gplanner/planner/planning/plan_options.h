@@ -4,7 +4,9 @@
 
 #include <cstddef>
 #include <functional>
+#include <string>
 
+#include "gplanner/planner/planning/certified_motions.h"
 #include "gplanner/planner/planning/local_planner.h"
 #include "gplanner/planner/planning/milestone_sampler.h"
 
@@ -24,6 +26,12 @@ struct PlanProgress {
 // planner.roadmap.milestones); memory bounds it further (roadmap_bytes).
 inline constexpr std::size_t kMaxMilestones = 100000000;
 
+// How a planner checks the edges of its roadmap: at samples of the edge resolution
+// (LocalPlanner), or certified free along the whole motion (CertifiedMotions).
+enum class EdgeChecks { kSampled, kCertified };
+const char* edge_checks_name(EdgeChecks edges);  // "sampled", "certified"
+bool parse_edge_checks(const std::string& name, EdgeChecks* edges);
+
 struct PlanOptions {
   unsigned long long seed = 1;
   double time_limit_s = 30;
@@ -36,7 +44,13 @@ struct PlanOptions {
   int shortcut_candidates = 256;
   // The found path is re-checked at the edge resolution divided by this (1: not at all)
   // before it is returned; a path that fails sends the search back to the roadmap.
+  // (Only when certify_path is false.)
   int final_check_refinement = 10;
+  EdgeChecks edges = EdgeChecks::kSampled;
+  // The found path is certified free (CertifiedMotions) before it is returned; an edge
+  // that fails is removed and the search goes on.
+  bool certify_path = true;
+  CertifiedMotionOptions certified;
   LocalPlannerOptions local;
   SamplerOptions sampler;  // how milestones are drawn
   std::function<void(const PlanProgress&)> progress;

@@ -26,9 +26,10 @@ CpuBatchChecker::CpuBatchChecker(const CollisionModel& model, int threads)
 CpuBatchChecker::~CpuBatchChecker() = default;
 
 void CpuBatchChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts,
-                            float inflation) {
+                            const float* clearances) {
   Impl& impl = *impl_;
-  const CollisionModelView view = inflated(impl.view, inflation);
+  CollisionModelView view = impl.view;
+  view.clearances = clearances;
   // This call's counts (calls from other threads run at once), published when it ends.
   std::atomic<unsigned long long> bv_tests{0}, triangle_tests{0};
   const std::size_t width = view.width;
@@ -39,7 +40,10 @@ void CpuBatchChecker::check(const float* configurations, std::size_t n, std::uin
     detail::TraversalCounts counts;
     for (std::size_t i = begin; i < end; ++i) {
       verdicts[i] =
-          detail::query_collides(view, configurations + i * width, X_WL, &counts) ? 1 : 0;
+          detail::query_collides(view, configurations + i * width, query_clearances(view, i), X_WL,
+                                 &counts)
+              ? 1
+              : 0;
     }
     bv_tests += counts.bv_tests;
     triangle_tests += counts.triangle_tests;

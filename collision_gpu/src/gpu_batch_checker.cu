@@ -50,6 +50,8 @@ struct GpuBatchChecker::Impl {
   DeviceBuffer<BvhTriangle> solid_triangles;
 
   DeviceBuffer<float> configurations;
+  DeviceBuffer<float> clearances;
+  DeviceBuffer<std::int32_t> pair_ancestor;
   DeviceBuffer<std::uint8_t> verdicts;
   DeviceBuffer<traversals::DeviceTestCounts> counts;
   traversals::PacketTraversal packet;
@@ -73,6 +75,7 @@ struct GpuBatchChecker::Impl {
     triangles.upload(host.triangles);
     pair_a.upload(host.pair_a);
     pair_b.upload(host.pair_b);
+    pair_ancestor.upload(host.pair_ancestor);
     link_solids.upload(host.link_solids);
     components.upload(host.solids.components);
     component_tree.upload(host.solids.tree);
@@ -87,6 +90,7 @@ struct GpuBatchChecker::Impl {
     view.triangles = triangles.get();
     view.pair_a = pair_a.get();
     view.pair_b = pair_b.get();
+    view.pair_ancestor = pair_ancestor.get();
     view.link_solids = link_solids.get();
     view.solids = {components.get(), component_tree.get(), solid_nodes.get(),
                    solid_triangles.get()};
@@ -99,17 +103,24 @@ struct GpuBatchChecker::Impl {
     return std::max<std::size_t>(1, std::min(n, fit));
   }
 
-  void check(const float* h_q, std::size_t n, std::uint8_t* h_verdicts, float inflation) {
+  void check(const float* h_q, std::size_t n, std::uint8_t* h_verdicts,
+             const float* h_clearances) {
     stats = {};
     if (n == 0) return;
-    const CollisionModelView call_view = inflated(view, inflation);
+    CollisionModelView call_view = view;
     const bool is_balanced = options.traversal == Traversal::kBalanced;
     const std::size_t width = view.width;
-    const std::size_t per_query = width * sizeof(float) + 1 + 4 * sizeof(unsigned);
+    const std::size_t links = h_clearances ? static_cast<std::size_t>(view.link_count) : 0;
+    const std::size_t per_query =
+        (width + links) * sizeof(float) + 1 + 4 * sizeof(unsigned);
     std::size_t chunk =
         chunk_size(n, per_query, is_balanced ? traversals::BalancedTraversal::kChunkShare : 0.9);
     if (is_balanced) balanced->reserve(chunk, memory_cap);
     configurations.reserve(chunk * width);
+    if (h_clearances) {
+      clearances.reserve(chunk * links);
+      call_view.clearances = clearances.get();
+    }
     verdicts.reserve(chunk);
     check_cuda(cudaMemset(counts.get(), 0, sizeof(traversals::DeviceTestCounts)), "memset");
 
@@ -123,6 +134,11 @@ struct GpuBatchChecker::Impl {
       check_cuda(cudaMemcpy(configurations.get(), h_q + done * width, count * width * sizeof(float),
                             cudaMemcpyHostToDevice),
                  "upload configurations");
+      if (h_clearances) {
+        check_cuda(cudaMemcpy(clearances.get(), h_clearances + done * links,
+                              count * links * sizeof(float), cudaMemcpyHostToDevice),
+                   "upload clearances");
+      }
       const int m = static_cast<int>(count);
       if (options.traversal == Traversal::kBasic) {
         traversals::run_basic(call_view, configurations.get(), m, verdicts.get(), counts.get());
@@ -160,9 +176,9 @@ GpuBatchChecker::GpuBatchChecker(const CollisionModel& model, const GpuCheckerOp
 GpuBatchChecker::~GpuBatchChecker() = default;
 
 void GpuBatchChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts,
-                            float inflation) {
+                            const float* clearances) {
   const std::lock_guard<std::mutex> lock(impl_->mutex);
-  impl_->check(configurations, n, verdicts, inflation);
+  impl_->check(configurations, n, verdicts, clearances);
   const std::lock_guard<std::mutex> stats_lock(impl_->stats_mutex);
   impl_->last_stats = impl_->stats;
 }

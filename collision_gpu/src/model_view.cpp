@@ -22,6 +22,20 @@ BodyRange append_body(const Bvh& bvh, std::vector<BvhNode>* nodes,
   return range;
 }
 
+// The deepest link that both a and b are (or hang from); links[l].parent < l.
+std::int32_t deepest_common_ancestor(const std::vector<LinkKinematics>& links, std::int32_t a,
+                                     std::int32_t b) {
+  while (a != b) {
+    if (a > b) {
+      a = links[a].parent;
+    } else {
+      b = links[b].parent;
+    }
+    if (a < 0 || b < 0) return 0;  // the root: every link hangs from it
+  }
+  return a;
+}
+
 }  // namespace
 
 std::size_t CollisionModel::triangle_count() const {
@@ -70,6 +84,13 @@ FlatCollisionModel::FlatCollisionModel(const CollisionModel& model)
     deepest_link = std::max(deepest_link, bvh_depth(bvh));
   }
   environment = append_body(model.environment, &nodes, &triangles);
+  for (std::size_t p = 0; p < pair_a.size(); ++p) {
+    if (pair_a[p] < 0 || pair_b[p] < 0 || pair_a[p] >= static_cast<int>(links.size()) ||
+        pair_b[p] >= static_cast<int>(links.size())) {
+      throw std::invalid_argument("a checked link pair names a link the model does not have");
+    }
+    pair_ancestor.push_back(deepest_common_ancestor(links, pair_a[p], pair_b[p]));
+  }
   traversal_depth = deepest_link + std::max(deepest_link, bvh_depth(model.environment));
   if (traversal_depth >= detail::kStackSize) {
     throw std::invalid_argument("BVHs too deep for the traversal stack of " +
@@ -118,6 +139,7 @@ CollisionModelView FlatCollisionModel::view() const {
   v.pair_count = static_cast<std::int32_t>(pair_a.size());
   v.pair_a = pair_a.data();
   v.pair_b = pair_b.data();
+  v.pair_ancestor = pair_ancestor.data();
   v.containment = containment ? 1 : 0;
   v.link_solids = link_solids.data();
   v.environment_solids = environment_solids;

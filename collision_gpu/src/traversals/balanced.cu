@@ -31,7 +31,7 @@ __global__ void balanced_roots_kernel(CollisionModelView m, const float* d_q, in
   }
   detail::Xf X_WL[detail::kMaxLinks];
   detail::link_poses(m, q, X_WL);
-  auto emit = [&](const detail::BodyRanges& r, const detail::Xf& X_AB) {
+  auto emit = [&](const detail::BodyRanges& r, const detail::Xf& X_AB, float threshold) {
     const unsigned slot = atomicAdd(&d_state->jobs, 1u);
     if (slot >= static_cast<unsigned>(job_capacity)) {
       d_state->jobs_overflow = 1;
@@ -39,17 +39,22 @@ __global__ void balanced_roots_kernel(CollisionModelView m, const float* d_q, in
     }
     Job job;
     job.query = i;
+    job.threshold = threshold;
     job.a = r.a;
     job.b = r.b;
     store_transform(X_AB, job.X_AB);
     d_jobs[slot] = job;
     d_tasks[slot] = {static_cast<int>(slot), 0, 0};
   };
+  const float* clearances = query_clearances(m, i);
   const auto pose = [&](int l) { return X_WL[l]; };
   const auto centre = [&](int l) { return detail::sphere_center_W(m, l, X_WL[l]); };
   for (int body = 0; body < detail::body_count(m); ++body) {
-    if (detail::body_may_touch(m, body, centre))
-      emit(detail::body_ranges(m, body), detail::body_transform(m, body, pose));
+    const detail::BodyTolerance tolerance = detail::body_tolerance(m, body, clearances);
+    if (detail::body_may_touch(m, body, centre, tolerance.margin)) {
+      emit(detail::body_ranges(m, body), detail::body_transform(m, body, pose),
+           tolerance.threshold);
+    }
   }
 }
 
@@ -107,7 +112,9 @@ __global__ void __launch_bounds__(32 * kRootWarps)
   const int bodies = detail::body_count(m);
   for (int start = 0; start < bodies; start += 32) {
     const int b = start + static_cast<int>(lane);
-    const bool touch = b < bodies && detail::body_may_touch(m, b, centre);
+    const detail::BodyTolerance tolerance =
+        detail::body_tolerance(m, b < bodies ? b : 0, query_clearances(m, i));
+    const bool touch = b < bodies && detail::body_may_touch(m, b, centre, tolerance.margin);
     const unsigned touching = __ballot_sync(kFullMask, touch);
     if (touching == 0) continue;
     unsigned base = 0;
@@ -123,6 +130,7 @@ __global__ void __launch_bounds__(32 * kRootWarps)
     }
     Job job;
     job.query = i;
+    job.threshold = tolerance.threshold;
     const detail::BodyRanges r = detail::body_ranges(m, b);
     job.a = r.a;
     job.b = r.b;
@@ -172,6 +180,7 @@ __global__ void __launch_bounds__(32 * kPairWarps)
     const int query = job.query;
     if (__shfl_sync(kFullMask, lane == 0 ? collided_flags[query] : 0, 0)) continue;
     const BodyRange body_a = job.a, body_b = job.b;
+    const float threshold = job.threshold, margin = 2 * threshold;
     const detail::Xf X_AB = detail::load_transform(job.X_AB);
     if (lane == 0) stack[0] = make_int2(task.a, task.b);
     __syncwarp();
@@ -190,12 +199,12 @@ __global__ void __launch_bounds__(32 * kPairWarps)
         const BvhNode& na = m.nodes[body_a.node_offset + pair.x];
         const BvhNode& nb = m.nodes[body_b.node_offset + pair.y];
         ++counts.bv_tests;
-        if (detail::nodes_overlap(na, nb, X_AB, m.margin)) {
+        if (detail::nodes_overlap(na, nb, X_AB, margin)) {
           if (na.is_leaf() && nb.is_leaf()) {
             ++counts.triangle_tests;
             hit = detail::leaf_collides(m.triangles[body_a.triangle_offset + na.triangle()],
                                         m.triangles[body_b.triangle_offset + nb.triangle()], X_AB,
-                                        m.threshold);
+                                        threshold);
           } else {
             // The split without split_pair's order of the children: the next step tests
             // them side by side anyway.
@@ -281,6 +290,7 @@ __global__ void __launch_bounds__(kTaskThreads, 6)
   int top = 0, job_index = 0, query = 0;
   unsigned steps = 0;
   BodyRange body_a{}, body_b{};
+  float margin = 0;
   detail::Xf X_AB{}, X_BA{};
   const unsigned max_steps = d_state->steps;
   const unsigned threads = gridDim.x * blockDim.x;
@@ -311,6 +321,7 @@ __global__ void __launch_bounds__(kTaskThreads, 6)
           if (!d_collided[query]) {
             body_a = job.a;
             body_b = job.b;
+            margin = 2 * job.threshold;
             X_AB = detail::load_transform(job.X_AB);
             X_BA = geometry::inverse(X_AB);
             stack[0] = make_int2(task.a, task.b);
@@ -333,7 +344,7 @@ __global__ void __launch_bounds__(kTaskThreads, 6)
         const BvhNode& na = m.nodes[body_a.node_offset + ia];
         const BvhNode& nb = m.nodes[body_b.node_offset + ib];
         ++counts.bv_tests;
-        if (detail::nodes_overlap(na, nb, X_AB, m.margin)) {
+        if (detail::nodes_overlap(na, nb, X_AB, margin)) {
           if (na.is_leaf() && nb.is_leaf()) {
             const unsigned slot = atomicAdd(&d_state->leaves, 1u);
             if (slot < leaf_capacity) {
@@ -399,7 +410,7 @@ __global__ void __launch_bounds__(256, 2)
       ++counts.triangle_tests;
       if (detail::leaf_collides(m.triangles[job.a.triangle_offset + leaf.a],
                                 m.triangles[job.b.triangle_offset + leaf.b],
-                                detail::load_transform(job.X_AB), m.threshold)) {
+                                detail::load_transform(job.X_AB), job.threshold)) {
         d_collided[job.query] = 1;
       }
     }
@@ -458,7 +469,7 @@ __global__ void balanced_contained_kernel(CollisionModelView m, const float* d_q
   if (i >= n || d_verdicts[i]) return;  // rows that are no configuration are marked already
   detail::Xf X_WL[detail::kMaxLinks];
   detail::link_poses(m, d_q + static_cast<std::size_t>(i) * m.width, X_WL);
-  if (detail::query_contained(m, X_WL)) d_verdicts[i] = 1;
+  if (detail::query_contained(m, X_WL, query_clearances(m, i))) d_verdicts[i] = 1;
 }
 }  // namespace
 

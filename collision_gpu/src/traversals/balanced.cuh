@@ -18,8 +18,11 @@
 namespace gplanner::traversals {
 
 // One body pair of one query that survived the broad phase: the unit tasks refer to.
+// Its leaf threshold: the model's, or a clearance's (detail::body_tolerance; the BV margin
+// is twice it).
 struct alignas(16) Job {
   int query;
+  float threshold;
   BodyRange a, b;
   float X_AB[12];
 };

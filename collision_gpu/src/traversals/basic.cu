@@ -9,9 +9,8 @@ __global__ void basic_kernel(CollisionModelView m, const float* d_q, int n,
   detail::TraversalCounts counts;
   if (i < n) {
     detail::Xf X_WL[detail::kMaxLinks];
-    d_verdicts[i] =
-        detail::query_collides(m, d_q + static_cast<std::size_t>(i) * m.width, X_WL, &counts) ? 1
-                                                                                              : 0;
+    const float* q = d_q + static_cast<std::size_t>(i) * m.width;
+    d_verdicts[i] = detail::query_collides(m, q, query_clearances(m, i), X_WL, &counts) ? 1 : 0;
   }
   add_counts(counts, d_counts);
 }

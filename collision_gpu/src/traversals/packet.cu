@@ -71,14 +71,15 @@ struct PacketEntry {
 // stack, each entry carrying the lanes that overlap it. Children are tested when their
 // parent is expanded; the pair more lanes overlap is visited first.
 __device__ void packet_traverse(const CollisionModelView& m, BodyRange a, BodyRange b,
-                                const detail::Xf& X_AB, unsigned active, PacketEntry* stack,
-                                bool* collided, detail::TraversalCounts* counts) {
+                                const detail::Xf& X_AB, detail::BodyTolerance tolerance,
+                                unsigned active, PacketEntry* stack, bool* collided,
+                                detail::TraversalCounts* counts) {
   const unsigned lane = threadIdx.x & 31;
   const bool mine = (active >> lane) & 1u;
   auto overlaps = [&](int ia, int ib) {
     if (counts) ++counts->bv_tests;
     return detail::nodes_overlap(m.nodes[a.node_offset + ia], m.nodes[b.node_offset + ib], X_AB,
-                                 m.margin);
+                                 tolerance.margin);
   };
   const unsigned root = __ballot_sync(kFullMask, mine && overlaps(0, 0));
   if (root == 0) return;
@@ -101,7 +102,7 @@ __device__ void packet_traverse(const CollisionModelView& m, BodyRange a, BodyRa
         if (counts) ++counts->triangle_tests;
         if (detail::leaf_collides(m.triangles[a.triangle_offset + na.triangle()],
                                   m.triangles[b.triangle_offset + nb.triangle()], X_AB,
-                                  m.threshold)) {
+                                  tolerance.threshold)) {
           *collided = true;
         }
       }
@@ -140,20 +141,23 @@ __global__ void packet_kernel(CollisionModelView m, const float* d_q, int n,
   if (valid) detail::link_poses(m, q, X_WL);
   // A row that is no configuration collides from the start and joins no traversal.
   bool collided = valid && !detail::is_configuration(m, q);
+  const float* clearances = query_clearances(m, query);
   const auto pose = [&](int l) { return X_WL[l]; };
   const auto centre = [&](int l) { return detail::sphere_center_W(m, l, X_WL[l]); };
   for (int body = 0; body < detail::body_count(m); ++body) {
     if (__all_sync(kFullMask, !valid || collided)) break;
-    const bool may_touch = valid && !collided && detail::body_may_touch(m, body, centre);
+    const detail::BodyTolerance tolerance = detail::body_tolerance(m, body, clearances);
+    const bool may_touch =
+        valid && !collided && detail::body_may_touch(m, body, centre, tolerance.margin);
     const unsigned active = __ballot_sync(kFullMask, may_touch);
     if (active) {
       const detail::BodyRanges r = detail::body_ranges(m, body);
-      packet_traverse(m, r.a, r.b, detail::body_transform(m, body, pose), active, stacks[warp],
-                      &collided, &counts);
+      packet_traverse(m, r.a, r.b, detail::body_transform(m, body, pose), tolerance, active,
+                      stacks[warp], &collided, &counts);
     }
   }
   // Each lane whose surfaces met nowhere: the containment step on its own.
-  if (valid && !collided) collided = detail::query_contained(m, X_WL);
+  if (valid && !collided) collided = detail::query_contained(m, X_WL, clearances);
   if (valid) d_verdicts[query] = collided ? 1 : 0;
   add_counts(counts, d_counts);
 }

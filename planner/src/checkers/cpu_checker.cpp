@@ -11,9 +11,9 @@ void CpuChecker::check(const float* configurations, std::size_t n, std::uint8_t*
   checker_.check(configurations, n, verdicts);
 }
 
-void CpuChecker::check_inflated(const float* configurations, std::size_t n, double inflation,
-                                std::uint8_t* verdicts) {
-  checker_.check(configurations, n, verdicts, static_cast<float>(inflation));
+void CpuChecker::check_clearances(const float* configurations, std::size_t n,
+                                  const float* clearances, std::uint8_t* verdicts) {
+  checker_.check(configurations, n, verdicts, clearances);
 }
 
 }  // namespace gplanner

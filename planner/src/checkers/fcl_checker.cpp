@@ -60,6 +60,7 @@ struct FclChecker::Impl {
   double gjk_tolerance = 1e-6;
   std::vector<int> links_with_geometry;
   std::vector<std::pair<int, int>> checked_pairs;
+  std::vector<int> pair_ancestors;  // per checked pair: RobotModel::deepest_common_link
   // Made in the constructor, and copied for each new workspace: FCL's constructor of a
   // collision object writes its geometry's local box, which other threads read.
   Workspace prototype;
@@ -95,6 +96,7 @@ struct FclChecker::Impl {
     }
     if (!environment.empty()) environment_bvh = internal::fcl_mesh(environment);
     checked_pairs = robot.checked_pairs();
+    for (const auto& [a, b] : checked_pairs) pair_ancestors.push_back(robot.deepest_common_link(a, b));
 
     for (const Link& link : robot.links)
       link_solids.push_back(
@@ -240,6 +242,35 @@ struct FclChecker::Impl {
     for (const auto& [a, b] : checked_pairs) measure(w->links[a].get(), w->links[b].get());
     return smallest;
   }
+
+  // Whether the configuration collides, or some body comes closer than its clearance
+  // (CollisionChecker::check_clearances; c: the row's clearances, one per robot link).
+  bool closer_than(const float* q, const float* c, Workspace* w) const {
+    for (std::size_t l = 0; l < scene.robot.links.size(); ++l)
+      if (!(c[l] >= 0)) return true;  // not a number: never free
+    if (collides(q, w)) return true;
+    fcl::DistanceRequestd request;
+    request.distance_tolerance = gjk_tolerance;
+    request.gjk_solver_type = fcl::GST_INDEP;
+    const auto closer = [&](fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, double clearance,
+                            double allowance) {
+      if (!(clearance > 0)) return false;  // collides() said they do not touch
+      fcl::DistanceResultd result;
+      fcl::distance(a, b, request, result);
+      return result.min_distance - allowance < clearance;
+    };
+    for (int l : links_with_geometry) {
+      if (w->environment && closer(w->links[l].get(), w->environment.get(), c[l], 0)) return true;
+      for (std::size_t i = 0; i < primitives.size(); ++i)
+        if (closer(w->links[l].get(), w->primitives[i].get(), c[l], allowances[i])) return true;
+    }
+    for (std::size_t p = 0; p < checked_pairs.size(); ++p) {
+      const auto [a, b] = checked_pairs[p];
+      const double clearance = double(c[a]) + c[b] - 2.0 * c[pair_ancestors[p]];
+      if (closer(w->links[a].get(), w->links[b].get(), clearance, 0)) return true;
+    }
+    return false;
+  }
 };
 
 FclChecker::FclChecker(const Scene& scene, int threads)
@@ -259,20 +290,18 @@ void FclChecker::check(const float* configurations, std::size_t n, std::uint8_t*
   });
 }
 
-void FclChecker::check_inflated(const float* configurations, std::size_t n, double inflation,
-                                std::uint8_t* verdicts) {
-  if (!(inflation > 0)) {
-    check(configurations, n, verdicts);
-    return;
-  }
-  // distance() checks for a collision first (0 then): one call answers both.
+void FclChecker::check_clearances(const float* configurations, std::size_t n,
+                                  const float* clearances, std::uint8_t* verdicts) {
   const std::size_t width = impl_->scene.space.width();
+  const std::size_t links = impl_->scene.robot.links.size();
   parallel_for(
       n, impl_->threads,
       [&](std::size_t begin, std::size_t end, int) {
         const auto w = impl_->workspaces.take();
-        for (std::size_t i = begin; i < end; ++i)
-          verdicts[i] = impl_->distance(configurations + i * width, &*w) < inflation ? 1 : 0;
+        for (std::size_t i = begin; i < end; ++i) {
+          verdicts[i] =
+              impl_->closer_than(configurations + i * width, clearances + i * links, &*w) ? 1 : 0;
+        }
       },
       1);
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "gplanner/planner/scene/scene.h"
@@ -9,12 +10,19 @@
 namespace gplanner {
 namespace {
 
-// A piece of motion `motion` from fraction t0 to t1 along which no robot point moves
-// farther than the round's bound.
+// A piece of motion `motion` from fraction t0 to t1, and whether each end is known to
+// keep the clearance this round asks (it kept a larger one in an earlier round).
 struct Segment {
   std::size_t motion;
   double t0, t1;
+  bool good0, good1;
 };
+
+// c rounded up to a float (clearances are bounds: never rounded down).
+float float_at_least(double c) {
+  const float f = static_cast<float>(c);
+  return double(f) >= c ? f : std::nextafter(f, std::numeric_limits<float>::infinity());
+}
 
 }  // namespace
 
@@ -24,7 +32,6 @@ CertifiedMotions::CertifiedMotions(const Scene& scene, CollisionChecker* checker
   step_ = options.step > 0 ? options.step : 0.01 * bound_.longest_displacement();
   if (!(step_ > 0)) step_ = 1e-3;  // a robot that cannot move: any bound serves
   finest_step_ = options.finest_step > 0 ? options.finest_step : step_ / 1024;
-  self_pairs_ = !scene.robot.checked_pairs().empty();
 }
 
 CertifiedMotionStats CertifiedMotions::stats() const {
@@ -35,24 +42,36 @@ CertifiedMotionStats CertifiedMotions::stats() const {
 bool CertifiedMotions::check_motions(const float* from, const float* to, std::size_t count,
                                      std::uint8_t* invalid) {
   const std::size_t width = scene_.space.width();
+  const std::size_t links = scene_.robot.links.size();
   std::fill(invalid, invalid + count, std::uint8_t(0));
-  // The first segments: every motion cut so that each moves points at most step_.
+  // Per motion: each link's displacement bound over the whole motion, and the number of
+  // first segments, so that no link moves farther than step_ along one.
+  std::vector<double> motion_bounds(count * links);
   std::vector<Segment> open;
   for (std::size_t m = 0; m < count; ++m) {
-    const double length = bound_.displacement(from + m * width, to + m * width);
-    const double pieces = std::max(1.0, std::ceil(length / step_));
-    if (!std::isfinite(length) || pieces > 1e7) {
+    double* bounds = &motion_bounds[m * links];
+    bound_.link_displacements(from + m * width, to + m * width, bounds);
+    double longest = 0;
+    bool finite = true;
+    for (std::size_t l = 0; l < links; ++l) {
+      finite = finite && std::isfinite(bounds[l]);
+      longest = std::max(longest, bounds[l]);
+    }
+    const double pieces = std::max(1.0, std::ceil(longest / step_));
+    if (!finite || pieces > 1e7) {
       invalid[m] = 1;  // no configuration, or a motion too long to certify
       continue;
     }
     const std::size_t n = static_cast<std::size_t>(pieces);
-    for (std::size_t j = 0; j < n; ++j) open.push_back({m, double(j) / n, double(j + 1) / n});
+    for (std::size_t j = 0; j < n; ++j)
+      open.push_back({m, double(j) / n, double(j + 1) / n, false, false});
   }
   CertifiedMotionStats stats;
   stats.motions = count;
-  std::vector<float> ends;
-  std::vector<std::uint8_t> inflated, plain;
-  for (double bound = step_; !open.empty(); bound /= 2) {
+  std::vector<float> ends, clearances;
+  std::vector<std::uint8_t> verdicts, plain;
+  std::vector<std::size_t> end_of;  // per open segment: its first end's index in `ends`
+  while (!open.empty()) {
     if (should_stop_ && should_stop_()) return false;
     ++stats.rounds;
     // Segments of motions found invalid meanwhile are dropped.
@@ -60,49 +79,76 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
                               [&](const Segment& s) { return invalid[s.motion] != 0; }),
                open.end());
     if (open.empty()) break;
-    if (bound < finest_step_) {
-      for (const Segment& s : open) invalid[s.motion] = 1;  // not certified: conservative
-      break;
-    }
-    // Both ends of every open segment, with the clearance of this round's bound.
-    ends.resize(open.size() * 2 * width);
+    // The ends to check: those not known good, each once. Within a round all open
+    // segments of one motion have the same length (each round halves them), so two that
+    // meet ask the same clearances at the end they share: half of each link's bound over
+    // the segment (a configuration inside lies within half a segment of an end).
+    ends.clear();
+    clearances.clear();
+    end_of.assign(open.size(), 0);
+    std::vector<std::size_t> end_index(open.size() * 2, SIZE_MAX);
     for (std::size_t i = 0; i < open.size(); ++i) {
       const Segment& s = open[i];
-      scene_.space.interpolate(from + s.motion * width, to + s.motion * width, s.t0,
-                               &ends[(2 * i) * width]);
-      scene_.space.interpolate(from + s.motion * width, to + s.motion * width, s.t1,
-                               &ends[(2 * i + 1) * width]);
+      const double fraction = s.t1 - s.t0;
+      const double* bounds = &motion_bounds[s.motion * links];
+      const auto add_end = [&](double t) {
+        const std::size_t e = ends.size() / width;
+        ends.resize(ends.size() + width);
+        scene_.space.interpolate(from + s.motion * width, to + s.motion * width, t,
+                                 &ends[e * width]);
+        for (std::size_t l = 0; l < links; ++l)
+          clearances.push_back(float_at_least(0.5 * bounds[l] * fraction));
+        return e;
+      };
+      const bool shares = i > 0 && open[i - 1].motion == s.motion && open[i - 1].t1 == s.t0;
+      if (!s.good0) end_index[2 * i] = shares && end_index[2 * i - 1] != SIZE_MAX
+                                           ? end_index[2 * i - 1]
+                                           : add_end(s.t0);
+      if (!s.good1) end_index[2 * i + 1] = add_end(s.t1);
     }
-    inflated.resize(open.size() * 2);
-    checker_->check_inflated(ends.data(), inflated.size(), clearance(bound), inflated.data());
-    stats.checks += inflated.size();
-    ++stats.batches;
+    const std::size_t n_ends = ends.size() / width;
+    verdicts.resize(n_ends);
+    if (n_ends > 0) {
+      checker_->check_clearances(ends.data(), n_ends, clearances.data(), verdicts.data());
+      stats.checks += n_ends;
+      ++stats.batches;
+    }
     // Ends that failed: do they collide themselves?
     std::vector<std::size_t> failed;
-    for (std::size_t k = 0; k < inflated.size(); ++k)
-      if (inflated[k]) failed.push_back(k);
-    std::vector<float> failed_ends(failed.size() * width);
-    for (std::size_t f = 0; f < failed.size(); ++f)
-      std::copy_n(&ends[failed[f] * width], width, &failed_ends[f * width]);
-    plain.resize(failed.size());
+    for (std::size_t e = 0; e < n_ends; ++e)
+      if (verdicts[e]) failed.push_back(e);
     if (!failed.empty()) {
+      std::vector<float> failed_ends(failed.size() * width);
+      for (std::size_t f = 0; f < failed.size(); ++f)
+        std::copy_n(&ends[failed[f] * width], width, &failed_ends[f * width]);
+      plain.resize(failed.size());
       checker_->check(failed_ends.data(), failed.size(), plain.data());
       stats.checks += failed.size();
       ++stats.batches;
+      for (std::size_t f = 0; f < failed.size(); ++f) verdicts[failed[f]] = plain[f] ? 2 : 1;
     }
-    std::vector<std::uint8_t> end_failed(inflated.size(), 0);
-    for (std::size_t f = 0; f < failed.size(); ++f) {
-      if (plain[f]) invalid[open[failed[f] / 2].motion] = 1;
-      end_failed[failed[f]] = 1;
-    }
-    // Certified segments leave; the others are halved for the next round.
+    // 0: kept the clearance; 1: free but closer; 2: colliding. Certified segments leave;
+    // the others are halved for the next round, the ends that kept their clearance
+    // known good.
     std::vector<Segment> next;
     for (std::size_t i = 0; i < open.size(); ++i) {
       const Segment& s = open[i];
-      if (invalid[s.motion] || (!end_failed[2 * i] && !end_failed[2 * i + 1])) continue;
+      if (invalid[s.motion]) continue;
+      const std::uint8_t v0 = s.good0 ? 0 : verdicts[end_index[2 * i]];
+      const std::uint8_t v1 = s.good1 ? 0 : verdicts[end_index[2 * i + 1]];
+      if (v0 == 2 || v1 == 2) {
+        invalid[s.motion] = 1;
+        continue;
+      }
+      if (v0 == 0 && v1 == 0) continue;
+      const double* bounds = &motion_bounds[s.motion * links];
+      if (*std::max_element(bounds, bounds + links) * 0.5 * (s.t1 - s.t0) < finest_step_) {
+        invalid[s.motion] = 1;  // not certified at the finest step: conservative
+        continue;
+      }
       const double middle = 0.5 * (s.t0 + s.t1);
-      next.push_back({s.motion, s.t0, middle});
-      next.push_back({s.motion, middle, s.t1});
+      next.push_back({s.motion, s.t0, middle, v0 == 0, false});
+      next.push_back({s.motion, middle, s.t1, false, v1 == 0});
     }
     open.swap(next);
   }

@@ -58,6 +58,18 @@ std::vector<std::pair<int, int>> RobotModel::checked_pairs() const {
   return pairs;
 }
 
+int RobotModel::deepest_common_link(int a, int b) const {
+  // Parents come before their children: the later of the two is never the other's
+  // ancestor, so it steps up.
+  while (a != b) {
+    int& later = a > b ? a : b;
+    const int joint = links[later].parent_joint;
+    if (joint < 0) return 0;  // a second root cannot be; the root holds everything
+    later = joints[joint].parent_link;
+  }
+  return a;
+}
+
 std::vector<std::pair<int, int>> adjacent_link_pairs(const RobotModel& robot) {
   const int n = static_cast<int>(robot.links.size());
   std::vector<std::vector<int>> neighbours(n);

@@ -16,9 +16,9 @@ class CostlyCallChecker : public CollisionChecker {
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override {
     cpu_.check(configurations, n, verdicts);
   }
-  void check_inflated(const float* configurations, std::size_t n, double inflation,
-                      std::uint8_t* verdicts) override {
-    cpu_.check_inflated(configurations, n, inflation, verdicts);
+  void check_clearances(const float* configurations, std::size_t n, const float* clearances,
+                        std::uint8_t* verdicts) override {
+    cpu_.check_clearances(configurations, n, clearances, verdicts);
   }
   std::size_t configurations_per_call_cost() const override { return per_call_; }
 

@@ -21,12 +21,12 @@ class CpuBatchChecker {
   CpuBatchChecker(const CpuBatchChecker&) = delete;
   CpuBatchChecker& operator=(const CpuBatchChecker&) = delete;
 
-  // configurations: shape [n, width]; verdicts: shape [n] (1: collision). With
-  // `inflation` > 0 (metres), the robot is grown by it: triangles closer than the
-  // model's threshold plus the inflation collide, and bounding volumes are tested with
-  // twice that margin (certified motions, planner/planning/certified_motions.h).
+  // configurations: shape [n, width]; verdicts: shape [n] (1: collision). clearances:
+  // null, or shape [n, links] (metres): each body checked with its threshold raised by
+  // its clearance, as CollisionModelView::clearances says (certified motions,
+  // planner/planning/certified_motions.h).
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts,
-             float inflation = 0);
+             const float* clearances = nullptr);
 
   // BV-pair and triangle tests of the last check() to finish (all its threads together),
   // published whole when it ends; with calls from several threads, each of the two reads

@@ -65,9 +65,9 @@ class GpuBatchChecker {
   // configurations: host, shape [n, width]; verdicts: host, shape [n]. Calls from any
   // number of threads are safe and take turns: the device work of one call (its chunk
   // buffers, work queues and counters are the checker's own) runs under a lock.
-  // `inflation` as CpuBatchChecker::check's.
+  // clearances: host, as CpuBatchChecker::check's.
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts,
-             float inflation = 0);
+             const float* clearances = nullptr);
 
   // Of the last check() to finish, whole (a copy: other threads may be checking).
   GpuCheckStats last_stats() const;

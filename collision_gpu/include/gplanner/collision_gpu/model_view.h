@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gplanner/collision_gpu/collision_model.h"
+#include "gplanner/collision_gpu/geometry/host_device.h"
 
 namespace gplanner {
 
@@ -37,22 +38,26 @@ struct CollisionModelView {
   std::int32_t pair_count;
   const std::int32_t* pair_a;
   const std::int32_t* pair_b;
+  const std::int32_t* pair_ancestor;  // per pair: the deepest link both links hang from
   // Solids: whether any checked body pair has a solid component on either side (when
   // not, the containment step does nothing), and each body's component trees.
   std::int32_t containment;
   const BodySolids* link_solids;
   BodySolids environment_solids;
   SolidsView solids;
+  // Clearances of a call (null: none), shape [queries, link_count], row i for query i of
+  // the call (certified motions, planner/planning/certified_motions.h). Per query, c_l >= 0
+  // for each link l, never smaller than its parent's. Link l is checked against the
+  // environment with the leaf threshold raised by c_l, a checked pair (a, b) whose deepest
+  // common ancestor link is h with it raised by c_a + c_b - 2 c_h (when c_l bounds how far
+  // link l's points move in the world, c_a - c_h bounds how far a's move relative to h);
+  // each body's BV margin is twice its threshold, as the model's own.
+  const float* clearances;
 };
 
-// The view with the robot grown by `inflation` metres: the leaf threshold raised by it,
-// the bounding-volume margin twice the new threshold (as for the model's own).
-inline CollisionModelView inflated(CollisionModelView view, float inflation) {
-  if (inflation > 0) {
-    view.threshold += inflation;
-    view.margin = 2 * view.threshold;
-  }
-  return view;
+// Query i's row of clearances, or null.
+GP_HD const float* query_clearances(const CollisionModelView& m, long long i) {
+  return m.clearances ? m.clearances + i * m.link_count : nullptr;
 }
 
 // Host-side flat arrays of a model: what the CPU backend reads, and what the GPU
@@ -72,7 +77,7 @@ struct FlatCollisionModel {
   BodyRange environment;
   std::vector<BvhNode> nodes;
   std::vector<BvhTriangle> triangles;
-  std::vector<std::int32_t> pair_a, pair_b;
+  std::vector<std::int32_t> pair_a, pair_b, pair_ancestor;
   FlatSolids solids;
   std::vector<BodySolids> link_solids;
   BodySolids environment_solids;

@@ -186,10 +186,32 @@ GP_HD void split_pair(const Xf& X_AB, const Xf& X_BA, int ia, int ib, const BvhN
   }
 }
 
+// The leaf threshold and BV margin one checked body of a query is tested with.
+struct BodyTolerance {
+  float threshold, margin;
+};
+
+// The model's, raised by the body's clearance when the query has clearances (its row
+// `clearances`, or null; CollisionModelView::clearances). A clearance that is not a
+// number makes every test of the body overlap: colliding, never free.
+GP_HD BodyTolerance body_tolerance(const CollisionModelView& m, int body, const float* clearances) {
+  if (!clearances) return {m.threshold, m.margin};
+  float extra;
+  if (body < m.link_count) {
+    extra = clearances[body];
+  } else {
+    const int p = body - m.link_count;
+    extra = clearances[m.pair_a[p]] + clearances[m.pair_b[p]] - 2 * clearances[m.pair_ancestor[p]];
+  }
+  if (extra != extra) extra = 3.0e38f;
+  const float threshold = m.threshold + (extra > 0 ? extra : 0.0f);
+  return {threshold, 2 * threshold};
+}
+
 // Whether bodies A and B (B placed in A's frame by X_AB) come within the threshold:
 // a depth-first walk of their BVTT with a private stack, in split_pair's order.
 GP_HD bool bodies_collide(const CollisionModelView& m, BodyRange a, BodyRange b, const Xf& X_AB,
-                          TraversalCounts* counts) {
+                          BodyTolerance tolerance, TraversalCounts* counts) {
   const Xf X_BA = geometry::inverse(X_AB);
   int stack_a[kStackSize], stack_b[kStackSize];
   int top = 0;
@@ -202,11 +224,12 @@ GP_HD bool bodies_collide(const CollisionModelView& m, BodyRange a, BodyRange b,
     const BvhNode& na = m.nodes[a.node_offset + ia];
     const BvhNode& nb = m.nodes[b.node_offset + ib];
     if (counts) ++counts->bv_tests;
-    if (!nodes_overlap(na, nb, X_AB, m.margin)) continue;
+    if (!nodes_overlap(na, nb, X_AB, tolerance.margin)) continue;
     if (na.is_leaf() && nb.is_leaf()) {
       if (counts) ++counts->triangle_tests;
       if (leaf_collides(m.triangles[a.triangle_offset + na.triangle()],
-                        m.triangles[b.triangle_offset + nb.triangle()], X_AB, m.threshold)) {
+                        m.triangles[b.triangle_offset + nb.triangle()], X_AB,
+                        tolerance.threshold)) {
         return true;
       }
       continue;
@@ -229,19 +252,19 @@ GP_HD V3f sphere_center_W(const CollisionModelView& m, int link, const Xf& X_WL)
 }
 
 // Broad phase of link l against the environment: its bounding sphere (centre c_W in the
-// world) against the environment's root box.
-GP_HD bool sphere_may_touch_environment(const CollisionModelView& m, int l, V3f c_W) {
+// world) against the environment's root box, within `margin`.
+GP_HD bool sphere_may_touch_environment(const CollisionModelView& m, int l, V3f c_W, float margin) {
   if (m.environment.node_offset < 0 || m.link_bodies[l].node_offset < 0) return false;
   return geometry::sphere_overlaps_obb(c_W, m.link_spheres[l].radius,
-                                       node_box(m.nodes[m.environment.node_offset]), m.margin);
+                                       node_box(m.nodes[m.environment.node_offset]), margin);
 }
 
 // Broad phase of a checked link pair: bounding sphere against bounding sphere (centres
-// ca_W and cb_W in the world).
-GP_HD bool spheres_may_touch(const CollisionModelView& m, int p, V3f ca_W, V3f cb_W) {
+// ca_W and cb_W in the world), within `margin`.
+GP_HD bool spheres_may_touch(const CollisionModelView& m, int p, V3f ca_W, V3f cb_W, float margin) {
   const V3f d = ca_W - cb_W;
   const float reach =
-      m.link_spheres[m.pair_a[p]].radius + m.link_spheres[m.pair_b[p]].radius + m.margin;
+      m.link_spheres[m.pair_a[p]].radius + m.link_spheres[m.pair_b[p]].radius + margin;
   return geometry::dot(d, d) <= reach * reach;
 }
 
@@ -268,58 +291,63 @@ GP_HD Xf body_transform(const CollisionModelView& m, int body, LinkPose X_WL) {
   return geometry::inverse(X_WL(m.pair_a[p])) * X_WL(m.pair_b[p]);
 }
 
-// The broad phase of a body; c_W(l) gives the centre of link l's bounding sphere in the
-// world.
+// The broad phase of a body, within `margin` (its BodyTolerance's); c_W(l) gives the
+// centre of link l's bounding sphere in the world.
 template <typename SphereCentre>
-GP_HD bool body_may_touch(const CollisionModelView& m, int body, SphereCentre c_W) {
-  if (body < m.link_count) return sphere_may_touch_environment(m, body, c_W(body));
+GP_HD bool body_may_touch(const CollisionModelView& m, int body, SphereCentre c_W, float margin) {
+  if (body < m.link_count) return sphere_may_touch_environment(m, body, c_W(body), margin);
   const int p = body - m.link_count;
-  return spheres_may_touch(m, p, c_W(m.pair_a[p]), c_W(m.pair_b[p]));
+  return spheres_may_touch(m, p, c_W(m.pair_a[p]), c_W(m.pair_b[p]), margin);
 }
 
 // The containment step of one checked body (numbered as body_count's), once its two
 // bodies' surfaces are known to be apart: whether a component of either lies inside a
-// solid component of the other (containment.h). X_WL(l) gives link l's pose.
+// solid component of the other (containment.h), within `margin` (its BodyTolerance's).
+// X_WL(l) gives link l's pose.
 template <typename LinkPose>
-GP_HD bool body_contained(const CollisionModelView& m, int body, LinkPose X_WL) {
+GP_HD bool body_contained(const CollisionModelView& m, int body, LinkPose X_WL, float margin) {
   if (body < m.link_count) {
-    return either_inside(m.solids, m.environment_solids, m.link_solids[body], X_WL(body), m.margin);
+    return either_inside(m.solids, m.environment_solids, m.link_solids[body], X_WL(body), margin);
   }
   const int p = body - m.link_count;
   return either_inside(m.solids, m.link_solids[m.pair_a[p]], m.link_solids[m.pair_b[p]],
-                       body_transform(m, body, X_WL), m.margin);
+                       body_transform(m, body, X_WL), margin);
 }
 
 // The containment step of a query whose surface tests found no collision: whether a
 // link lies inside a solid obstacle or an obstacle inside a solid link, or a link of a
 // checked pair inside the other. Only bodies past the broad phase can (a body inside
 // another lies within its bounding volumes); nothing runs when the model has no solid
-// on either side of any checked body (m.containment). X_WL: the query's link poses.
-GP_HD bool query_contained(const CollisionModelView& m, const Xf* X_WL) {
+// on either side of any checked body (m.containment). X_WL: the query's link poses;
+// clearances: its row, or null.
+GP_HD bool query_contained(const CollisionModelView& m, const Xf* X_WL, const float* clearances) {
   if (!m.containment) return false;
   const auto pose = [&](int l) { return X_WL[l]; };
   const auto centre = [&](int l) { return sphere_center_W(m, l, X_WL[l]); };
   for (int body = 0; body < body_count(m); ++body) {
-    if (body_may_touch(m, body, centre) && body_contained(m, body, pose)) return true;
+    const float margin = body_tolerance(m, body, clearances).margin;
+    if (body_may_touch(m, body, centre, margin) && body_contained(m, body, pose, margin))
+      return true;
   }
   return false;
 }
 
 // The whole query: true when configuration q (shape: [m.width]) collides with the
 // environment or with itself, or is no configuration (is_configuration). X_WL: scratch for
-// m.link_count poses.
-GP_HD bool query_collides(const CollisionModelView& m, const float* q, Xf* X_WL,
-                          TraversalCounts* counts) {
+// m.link_count poses; clearances: the query's row, or null.
+GP_HD bool query_collides(const CollisionModelView& m, const float* q, const float* clearances,
+                          Xf* X_WL, TraversalCounts* counts) {
   if (!is_configuration(m, q)) return true;
   link_poses(m, q, X_WL);
   const auto pose = [&](int l) { return X_WL[l]; };
   const auto centre = [&](int l) { return sphere_center_W(m, l, X_WL[l]); };
   for (int body = 0; body < body_count(m); ++body) {
-    if (!body_may_touch(m, body, centre)) continue;
+    const BodyTolerance tolerance = body_tolerance(m, body, clearances);
+    if (!body_may_touch(m, body, centre, tolerance.margin)) continue;
     const BodyRanges r = body_ranges(m, body);
-    if (bodies_collide(m, r.a, r.b, body_transform(m, body, pose), counts)) return true;
+    if (bodies_collide(m, r.a, r.b, body_transform(m, body, pose), tolerance, counts)) return true;
   }
-  return query_contained(m, X_WL);
+  return query_contained(m, X_WL, clearances);
 }
 
 }  // namespace gplanner::detail

@@ -34,12 +34,16 @@ class CollisionChecker {
   // on every backend: never free, and no exception in the middle of a batch.
   virtual void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) = 0;
 
-  // As check(), with every checked pair (robot and environment, and the link pairs
-  // checked for self-collision) held to a clearance: 1 also where a pair comes closer
-  // than `inflation` metres (>= 0; 0 is check()), up to the tolerance band as check() is.
-  // What certified motions rest on (planner/planning/certified_motions.h).
-  virtual void check_inflated(const float* configurations, std::size_t n, double inflation,
-                              std::uint8_t* verdicts) = 0;
+  // As check(), with every checked pair held to a clearance, up to the tolerance band as
+  // check() is: 1 also where link l comes closer to the environment than c_l metres, or
+  // a checked link pair (a, b) closer to each other than c_a + c_b - 2 c_h, h being the
+  // deepest link both hang from (RobotModel::deepest_common_link). clearances: shape [n,
+  // robot links], per row c_l >= 0 and never smaller than the parent link's; a
+  // clearance that is not a number makes its configuration colliding. What certified
+  // motions rest on (planner/planning/certified_motions.h: c_l bounds how far link l's
+  // points move, so c_a - c_h bounds how far a's move relative to h).
+  virtual void check_clearances(const float* configurations, std::size_t n,
+                                const float* clearances, std::uint8_t* verdicts) = 0;
 
   // About how many configurations cost as much to check as one call costs by itself:
   // callers that can check more configurations in fewer calls do so while the extra

@@ -15,8 +15,8 @@ class CpuChecker : public CollisionChecker {
 
   std::string backend() const override { return "cpu"; }
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override;
-  void check_inflated(const float* configurations, std::size_t n, double inflation,
-                      std::uint8_t* verdicts) override;
+  void check_clearances(const float* configurations, std::size_t n, const float* clearances,
+                        std::uint8_t* verdicts) override;
 
   // BV-pair and triangle tests done by the last check() (all threads together).
   unsigned long long bv_tests() const { return checker_.bv_tests(); }

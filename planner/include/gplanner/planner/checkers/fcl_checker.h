@@ -25,9 +25,9 @@ class FclChecker : public CollisionChecker {
 
   std::string backend() const override { return "fcl"; }
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override;
-  // A pair closer than `inflation` by FCL's distance (after its collision check).
-  void check_inflated(const float* configurations, std::size_t n, double inflation,
-                      std::uint8_t* verdicts) override;
+  // A pair closer than its clearance by FCL's distance (after its collision check).
+  void check_clearances(const float* configurations, std::size_t n, const float* clearances,
+                        std::uint8_t* verdicts) override;
 
   // Smallest distance (metres) from the robot to the environment and between checked
   // link pairs; 0 when the configuration collides. To a primitive with an allowance

@@ -19,8 +19,8 @@ class GpuChecker : public CollisionChecker {
 
   std::string backend() const override { return "gpu"; }
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override;
-  void check_inflated(const float* configurations, std::size_t n, double inflation,
-                      std::uint8_t* verdicts) override;
+  void check_clearances(const float* configurations, std::size_t n, const float* clearances,
+                        std::uint8_t* verdicts) override;
   // Measured on an H100 with the balanced traversal (bench/history/issue4_planning.md): a call of
   // 100 configurations takes 0.4 to 0.7 ms, 10,000 take 0.9 to 2.0 ms.
   std::size_t configurations_per_call_cost() const override { return 8192; }

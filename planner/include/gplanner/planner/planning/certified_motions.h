@@ -2,28 +2,28 @@
 // Motions certified free: an answer that holds for every configuration on the straight
 // motion, not only at samples.
 //
-// MotionBound bounds how far any robot point moves along a motion. Cut a motion into
-// segments along which no point moves farther than d: a configuration inside a segment
-// is within d/2 of one of the segment's two ends (every point of the robot), so if both
-// ends keep a clearance of d/2 to the environment (and d between checked link pairs,
-// whose points may approach each other by twice as much), the whole segment is free.
-// Each round checks the ends of every open segment with that clearance
-// (CollisionChecker::check_inflated, one batch per round); an end that fails it but is
-// free itself (check()) splits its segment in two for the next round, at half the
-// clearance, so that segments near obstacles are refined and those far from them are
-// not; an end that collides makes the motion invalid. A segment still not certified
-// when its bound has shrunk below `finest_step` makes the motion invalid too: certified
-// answers are conservative. With the tolerance band of the checker (a configuration
-// within delta of contact may be reported colliding), "certified free" means: no
-// configuration on the motion brings any checked pair closer than 0 (FCL's distance).
+// MotionBound bounds, per robot link, how far its points move along a motion, each
+// link's bound adding to its parent's. Cut a motion into segments; a configuration
+// inside a segment lies within half the segment of one of its two ends, so every point
+// of link l is within c_l = half l's bound over the segment of where it is at that end.
+// If at both ends link l keeps a clearance c_l to the environment, and each checked link
+// pair (a, b) a clearance c_a + c_b - 2 c_h (h the deepest link both hang from:
+// c_a - c_h bounds how far a's points move relative to h, so the two approach each other
+// by at most that sum), no configuration of the segment brings any checked pair into
+// contact (CollisionChecker::check_clearances). Segments start so that no link moves
+// farther than `step` along one. Each round checks, in one batch, the ends of every open
+// segment not yet known to keep their clearance (ends shared by two segments once); an end
+// that fails but is free itself (check()) halves its segment for the next round, whose
+// clearances are half as large, so that segments near obstacles are refined and those far
+// from them are not; an end that collides makes the motion invalid. A segment that would
+// be halved below `finest_step` makes its motion invalid too: certified answers are
+// conservative.
 //
-// Not yet used by the planners (issue 21): the bound is the whole robot's, so a link pair
-// checked for self-collision is held to the clearance of the largest motion of any robot
-// point. Pairs that stay millimetres apart in every configuration (a gripper and its
-// wrist) then never certify, and articulated robots' motions are all refused; per-pair
-// bounds (the joints between the two links only) are the next step. For rigid robots
-// (no link pairs) the clearance is half the segment's bound, and it certifies motions
-// with millimetres to spare (tests/planner/planning/certified_motions_test.cpp).
+// With the tolerance band: the clearances are added to the checker's own leaf threshold,
+// which stays there to absorb float rounding (docs/design.md, "The tolerance band");
+// "certified free" means that no configuration on the motion brings any checked pair
+// closer than 0 (FCL's distance), up to that band; a motion within the band of contact
+// may be reported invalid, never the other way round.
 
 #include <cstddef>
 #include <cstdint>
@@ -38,7 +38,7 @@ namespace gplanner {
 struct Scene;
 
 struct CertifiedMotionOptions {
-  // Metres: the first segments of a motion move no robot point farther than this. <= 0:
+  // Metres: along the first segments of a motion no link moves farther than this. <= 0:
   // 1 % of the longest motion the space allows (MotionBound::longest_displacement).
   double step = 0;
   // Metres: a segment not certified when its bound is below this makes its motion
@@ -48,7 +48,7 @@ struct CertifiedMotionOptions {
 
 struct CertifiedMotionStats {
   std::size_t motions = 0;
-  std::size_t checks = 0;  // configurations checked (inflated and plain)
+  std::size_t checks = 0;  // configurations checked (with clearances and plain)
   std::size_t rounds = 0;
   std::size_t batches = 0;
 };
@@ -67,8 +67,6 @@ class CertifiedMotions {
   void set_stop(std::function<bool()> should_stop) { should_stop_ = std::move(should_stop); }
   double step() const { return step_; }
   double finest_step() const { return finest_step_; }
-  // The clearance a segment end is checked with when its segment moves points up to `d`.
-  double clearance(double d) const { return self_pairs_ ? d : d / 2; }
   CertifiedMotionStats stats() const;
 
  private:
@@ -76,7 +74,6 @@ class CertifiedMotions {
   CollisionChecker* checker_;
   MotionBound bound_;
   double step_ = 0, finest_step_ = 0;
-  bool self_pairs_ = false;
   std::function<bool()> should_stop_;
   mutable std::mutex stats_mutex_;
   CertifiedMotionStats stats_;

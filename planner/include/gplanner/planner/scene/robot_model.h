@@ -70,6 +70,8 @@ struct RobotModel {
   // Pairs of links that both carry collision geometry and are neither adjacent nor
   // disabled: the self-collision workload.
   std::vector<std::pair<int, int>> checked_pairs() const;
+  // The deepest link that links a and b both are or hang from.
+  int deepest_common_link(int a, int b) const;
 };
 
 // Adjacent links, as MoveIt's Setup Assistant finds them (compute_default_collisions):

@@ -244,8 +244,9 @@ struct FclChecker::Impl {
   }
 
   // Whether the configuration collides, or some body comes closer than its clearance
-  // (CollisionChecker::check_clearances; c: the row's clearances, one per robot link).
-  bool closer_than(const float* q, const float* c, Workspace* w) const {
+  // (CollisionChecker::check_clearances; c: the row's clearances, one per robot link), its
+  // clearance raised by `slack`.
+  bool closer_than(const float* q, const float* c, double slack, Workspace* w) const {
     for (std::size_t l = 0; l < scene.robot.links.size(); ++l)
       if (!(c[l] >= 0)) return true;  // not a number: never free
     if (collides(q, w)) return true;
@@ -254,10 +255,10 @@ struct FclChecker::Impl {
     request.gjk_solver_type = fcl::GST_INDEP;
     const auto closer = [&](fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, double clearance,
                             double allowance) {
-      if (!(clearance > 0)) return false;  // collides() said they do not touch
+      if (!(clearance + slack > 0)) return false;  // collides() said they do not touch
       fcl::DistanceResultd result;
       fcl::distance(a, b, request, result);
-      return result.min_distance - allowance < clearance;
+      return result.min_distance - allowance < std::max(0.0, clearance) + slack;
     };
     for (int l : links_with_geometry) {
       if (w->environment && closer(w->links[l].get(), w->environment.get(), c[l], 0)) return true;
@@ -292,6 +293,11 @@ void FclChecker::check(const float* configurations, std::size_t n, std::uint8_t*
 
 void FclChecker::check_clearances(const float* configurations, std::size_t n,
                                   const float* clearances, std::uint8_t* verdicts) {
+  check_clearances(configurations, n, clearances, 0.0, verdicts);
+}
+
+void FclChecker::check_clearances(const float* configurations, std::size_t n,
+                                  const float* clearances, double slack, std::uint8_t* verdicts) {
   const std::size_t width = impl_->scene.space.width();
   const std::size_t links = impl_->scene.robot.links.size();
   parallel_for(
@@ -300,7 +306,9 @@ void FclChecker::check_clearances(const float* configurations, std::size_t n,
         const auto w = impl_->workspaces.take();
         for (std::size_t i = begin; i < end; ++i) {
           verdicts[i] =
-              impl_->closer_than(configurations + i * width, clearances + i * links, &*w) ? 1 : 0;
+              impl_->closer_than(configurations + i * width, clearances + i * links, slack, &*w)
+                  ? 1
+                  : 0;
         }
       },
       1);

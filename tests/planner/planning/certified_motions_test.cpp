@@ -106,7 +106,7 @@ INSTANTIATE_TEST_SUITE_P(Backends, CertifiedMotionsOn, ::testing::Values("cpu", 
                          });
 
 // Every motion certified free on a real scene is free under FCL 100 times finer than the
-// planner's resolution; and the certified answers are conservative against FCL's own.
+// planner's resolution, and most short motions are certified.
 class CertifiedMotionsAgree : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(CertifiedMotionsAgree, CertifiedFreeMotionsPassFclAHundredTimesFiner) {
@@ -114,38 +114,46 @@ TEST_P(CertifiedMotionsAgree, CertifiedFreeMotionsPassFclAHundredTimesFiner) {
     const GpuDevice device = query_gpu_device();
     if (!device.available) GTEST_SKIP() << "no GPU: " << device.reason;
   }
-  const Scene scene = load_scene(testing::project_root() + "/scenes/piano.yaml");
-  std::unique_ptr<CollisionChecker> checker = make_collision_checker(scene, GetParam());
-  const std::size_t width = scene.space.width();
-  // Short motions between free configurations (as a roadmap's edges are).
-  const std::vector<float> q = testing::sample_configurations(scene, 4000, 11);
-  std::vector<std::uint8_t> colliding(4000);
-  checker->check(q.data(), 4000, colliding.data());
-  std::vector<float> free;
-  for (std::size_t i = 0; i < 4000; ++i)
-    if (!colliding[i]) free.insert(free.end(), &q[i * width], &q[(i + 1) * width]);
-  const std::size_t count = std::min<std::size_t>(60, free.size() / width / 2);
-  ASSERT_GE(count, 20u);
-  std::vector<float> from(count * width), to(count * width);
-  std::mt19937 rng(3);
-  for (std::size_t m = 0; m < count; ++m) {
-    std::copy_n(&free[(2 * m) * width], width, &from[m * width]);
-    // Halfway toward another free configuration: a motion of roadmap-edge length.
-    scene.space.interpolate(&free[(2 * m) * width], &free[(2 * m + 1) * width], 0.1, &to[m * width]);
+  // A rigid robot, and an articulated one whose checked link pairs stay close.
+  for (const char* name : {"piano.yaml", "pr2_reach.yaml"}) {
+    const Scene scene = load_scene(testing::project_root() + "/scenes/" + name);
+    std::unique_ptr<CollisionChecker> checker = make_collision_checker(scene, GetParam());
+    const std::size_t width = scene.space.width();
+    // Short motions between free configurations (as a roadmap's edges are).
+    const std::vector<float> q = testing::sample_configurations(scene, 4000, 11);
+    std::vector<std::uint8_t> colliding(4000);
+    checker->check(q.data(), 4000, colliding.data());
+    std::vector<float> free;
+    for (std::size_t i = 0; i < 4000; ++i)
+      if (!colliding[i]) free.insert(free.end(), &q[i * width], &q[(i + 1) * width]);
+    // FCL's distances (the fcl backend's clearances) and its fine re-check take long on
+    // the PR2: fewer motions there.
+    const bool articulated = scene.robot.links.size() > 1;
+    const std::size_t wanted = !articulated ? 60 : GetParam() == "fcl" ? 10 : 30;
+    const std::size_t count = std::min(wanted, free.size() / width / 2);
+    ASSERT_EQ(count, wanted) << name;
+    std::vector<float> from(count * width), to(count * width);
+    for (std::size_t m = 0; m < count; ++m) {
+      std::copy_n(&free[(2 * m) * width], width, &from[m * width]);
+      // A tenth of the way toward another free configuration: a roadmap edge's length.
+      scene.space.interpolate(&free[(2 * m) * width], &free[(2 * m + 1) * width], 0.1,
+                              &to[m * width]);
+    }
+    std::vector<std::uint8_t> invalid(count);
+    CertifiedMotions certified(scene, checker.get());
+    ASSERT_TRUE(certified.check_motions(from.data(), to.data(), count, invalid.data()));
+    std::size_t certified_free = 0;
+    for (std::size_t m = 0; m < count; ++m) {
+      if (invalid[m]) continue;
+      ++certified_free;
+      std::vector<float> motion(&from[m * width], &from[m * width] + width);
+      motion.insert(motion.end(), &to[m * width], &to[(m + 1) * width]);
+      EXPECT_EQ(path_recheck_problem(scene, motion, 100, false), "") << name << " motion " << m;
+    }
+    // Most short motions between free configurations are free; certification that
+    // refused them all would make planning impossible.
+    EXPECT_GT(certified_free, count / 2) << name << ": " << certified_free << " of " << count;
   }
-  std::vector<std::uint8_t> invalid(count);
-  CertifiedMotions certified(scene, checker.get());
-  ASSERT_TRUE(certified.check_motions(from.data(), to.data(), count, invalid.data()));
-  std::size_t certified_free = 0;
-  for (std::size_t m = 0; m < count; ++m) {
-    if (invalid[m]) continue;
-    ++certified_free;
-    const std::vector<float> path(&from[m * width], &from[m * width] + width);
-    std::vector<float> motion = path;
-    motion.insert(motion.end(), &to[m * width], &to[(m + 1) * width]);
-    EXPECT_EQ(path_recheck_problem(scene, motion, 100, false), "") << "motion " << m;
-  }
-  EXPECT_GT(certified_free, 0u) << "nothing certified: a check that cannot fail";
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, CertifiedMotionsAgree, ::testing::Values("cpu", "fcl", "gpu"),

@@ -238,6 +238,82 @@ TEST(MotionBound, BoundsEveryVertexMotion) {
   }
 }
 
+// Per link, how far its points move, in the world and relative to every ancestor link.
+TEST(MotionBound, LinkDisplacementsBoundEveryLinksMotion) {
+  for (const char* name : {"piano.yaml", "humanoid.yaml", "pr2_reach.yaml", "pr2_base_arm.yaml"}) {
+    const Scene scene = load(name);
+    const RobotModel& robot = scene.robot;
+    const MotionBound bound(robot, scene.space);
+    const int w = scene.space.width();
+    const std::size_t links = robot.links.size();
+    const std::vector<float> q = testing::sample_configurations(scene, 40, 7);
+    std::vector<float> near(w);
+    std::vector<double> moved(links), pa(robot.joints.size()), pb(robot.joints.size());
+    std::size_t tested = 0, relative_tight = 0;
+    for (int i = 0; i + 1 < 40; i += 2) {
+      for (double t : {1.0, 0.05}) {
+        scene.space.interpolate(&q[i * w], &q[(i + 1) * w], t, near.data());
+        bound.link_displacements(&q[i * w], near.data(), moved.data());
+        EXPECT_LE(*std::max_element(moved.begin(), moved.end()),
+                  bound.displacement(&q[i * w], near.data()) * (1 + 1e-9))
+            << name;
+        std::vector<Eigen::Isometry3d> Xa, Xb;
+        scene.space.joint_positions(robot, &q[i * w], pa.data());
+        scene.space.joint_positions(robot, near.data(), pb.data());
+        forward_kinematics(robot, scene.space.base_pose(&q[i * w]), pa.data(), &Xa);
+        forward_kinematics(robot, scene.space.base_pose(near.data()), pb.data(), &Xb);
+        for (std::size_t l = 0; l < links; ++l) {
+          // Every ancestor h of l (l itself, then up to the root).
+          for (int h = static_cast<int>(l);;) {
+            double most = 0;
+            for (const Eigen::Vector3d& p : robot.links[l].collision.vertices) {
+              const Eigen::Vector3d at_a = Xa[h].inverse() * (Xa[l] * p);
+              const Eigen::Vector3d at_b = Xb[h].inverse() * (Xb[l] * p);
+              most = std::max(most, (at_a - at_b).norm());
+            }
+            const double allowed = moved[l] - (h == static_cast<int>(l) ? 0.0 : moved[h]);
+            if (h != static_cast<int>(l)) {
+              EXPECT_LE(most, allowed * (1 + 1e-6) + 1e-9) << name << " link " << l << " in " << h;
+              relative_tight += allowed < moved[l] * 0.999;
+            }
+            ++tested;
+            if (robot.links[h].parent_joint < 0) break;
+            h = robot.joints[robot.links[h].parent_joint].parent_link;
+          }
+          double world = 0;
+          for (const Eigen::Vector3d& p : robot.links[l].collision.vertices)
+            world = std::max(world, (Xa[l] * p - Xb[l] * p).norm());
+          EXPECT_LE(world, moved[l] * (1 + 1e-6) + 1e-9) << name << " link " << l;
+        }
+      }
+    }
+    EXPECT_GT(tested, 0u);
+    if (links > 1) EXPECT_GT(relative_tight, 0u) << name << ": relative bounds no tighter";
+  }
+}
+
+TEST(RobotModel, DeepestCommonLink) {
+  const Scene scene = load("pr2_reach.yaml");
+  const RobotModel& robot = scene.robot;
+  for (const auto& [a, b] : robot.checked_pairs()) {
+    const int h = robot.deepest_common_link(a, b);
+    // h is an ancestor of both (or one of them), and no child of h is.
+    const auto ancestors = [&](int l) {
+      std::vector<int> chain{l};
+      while (robot.links[l].parent_joint >= 0)
+        chain.push_back(l = robot.joints[robot.links[l].parent_joint].parent_link);
+      return chain;
+    };
+    const std::vector<int> of_a = ancestors(a), of_b = ancestors(b);
+    const auto position_a = std::find(of_a.begin(), of_a.end(), h);
+    const auto position_b = std::find(of_b.begin(), of_b.end(), h);
+    ASSERT_NE(position_a, of_a.end());
+    ASSERT_NE(position_b, of_b.end());
+    if (position_a != of_a.begin() && position_b != of_b.begin())
+      EXPECT_NE(*(position_a - 1), *(position_b - 1)) << "a deeper common link exists";
+  }
+}
+
 TEST(LocalPlanner, MaxDisplacementSetsTheSamples) {
   const Scene scene = load("pr2_base_arm.yaml");
   CpuChecker checker(scene);

@@ -28,6 +28,10 @@ class FclChecker : public CollisionChecker {
   // A pair closer than its clearance by FCL's distance (after its collision check).
   void check_clearances(const float* configurations, std::size_t n, const float* clearances,
                         std::uint8_t* verdicts) override;
+  // The same with every body's clearance raised by `slack` metres (>= 0): the outer edge
+  // of the tolerance band, for comparisons.
+  void check_clearances(const float* configurations, std::size_t n, const float* clearances,
+                        double slack, std::uint8_t* verdicts);
 
   // Smallest distance (metres) from the robot to the environment and between checked
   // link pairs; 0 when the configuration collides. To a primitive with an allowance

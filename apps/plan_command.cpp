@@ -40,7 +40,8 @@ int run_plan(int argc, char** argv) {
   catch_interruptions();
   const CommandLine args(argc, argv, 2,
                          {"planner", "backend", "seed", "time-limit", "milestones", "traversal",
-                          "threads", "load-roadmap", "save-roadmap", "out", "picture"},
+                          "threads", "load-roadmap", "save-roadmap", "out", "picture", "edges",
+                          "path-check"},
                          {"json"});
   if (args.positionals().size() != 1)
     throw UsageError("gplan plan takes one scene file, not " +
@@ -59,6 +60,16 @@ int run_plan(int argc, char** argv) {
   }
   if (args.has("traversal") && backend != "gpu")
     throw UsageError("--traversal applies to the gpu backend only; add --backend gpu");
+  gplanner::EdgeChecks edges = gplanner::EdgeChecks::kSampled;
+  if (!gplanner::parse_edge_checks(args.text("edges", "sampled"), &edges))
+    throw UsageError("--edges: '" + args.text("edges", "") + "' is not one of sampled, certified");
+  const std::string path_check = args.text("path-check", "certified");
+  if (path_check != "certified" && path_check != "fine")
+    throw UsageError("--path-check: '" + path_check + "' is not one of certified, fine");
+  if (edges == gplanner::EdgeChecks::kCertified && path_check == "fine")
+    throw UsageError(
+        "--path-check fine with --edges certified: certified edges make a certified path; "
+        "leave out --path-check");
   const std::string out = args.text("out", "");
   const std::string save = args.text("save-roadmap", "");
   const std::string load = args.text("load-roadmap", "");
@@ -89,6 +100,8 @@ int run_plan(int argc, char** argv) {
   options.seed = args.count("seed", options.seed, 0, ~0ULL);
   options.time_limit_s = args.positive_number("time-limit", options.time_limit_s);
   options.milestones = args.count("milestones", options.milestones, 1, gplanner::kMaxMilestones);
+  options.edges = edges;
+  options.certify_path = path_check == "certified";
   // The first round's roadmap, before it is begun (later rounds stop at memory).
   const double roadmap_bytes =
       gplanner::roadmap_bytes(options.milestones, scene.space.width(), options.neighbors);
@@ -170,6 +183,12 @@ int run_plan(int argc, char** argv) {
             << gplanner::terminal_text(scene.name) << "), " << scene.space.dof() << " DOF\n"
             << "planner     " << gplanner::strategy_name(strategy) << ", seed " << options.seed
             << ", " << checker->backend() << " backend, k-NN on the " << neighbors->device() << "\n"
+            << "edges       " << gplanner::edge_checks_name(options.edges) << ", path "
+            << (options.certify_path || options.edges == gplanner::EdgeChecks::kCertified
+                    ? "certified free along every motion"
+                    : "re-checked at 1/" + std::to_string(options.final_check_refinement) +
+                          " of the edge resolution")
+            << "\n"
             << "roadmap     " << result.milestones << " milestones, " << result.edges << " edges ("
             << result.edges_checked << " checked, " << result.samples_checked << " edge samples), "
             << result.states_checked << " states checked, " << result.rounds << " round(s)\n";
@@ -191,6 +210,12 @@ int run_plan(int argc, char** argv) {
               << ",\"planner\":" << gplanner::json_string(gplanner::strategy_name(strategy))
               << ",\"backend\":" << gplanner::json_string(checker->backend())
               << ",\"knn\":" << gplanner::json_string(neighbors->device())
+              << ",\"edges\":" << gplanner::json_string(gplanner::edge_checks_name(options.edges))
+              << ",\"path_check\":"
+              << gplanner::json_string(options.certify_path ||
+                                               options.edges == gplanner::EdgeChecks::kCertified
+                                           ? "certified"
+                                           : "fine")
               << ",\"seed\":" << options.seed
               << ",\"solved\":" << (result.solved ? "true" : "false")
               << ",\"stop_reason\":" << gplanner::json_string(result.stop_reason)

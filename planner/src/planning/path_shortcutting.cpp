@@ -28,7 +28,7 @@ struct Proposal {
 // Shortcuts (i, j), j > i + 1, on `path`: all of them when few, else `candidates` at
 // random.
 Proposal propose(const std::vector<float>& path, int width, int candidates, LocalPlanner* local,
-                 LocalPlanner* fine, std::mt19937_64* rng) {
+                 LocalPlanner* fine, bool certified, std::mt19937_64* rng) {
   Proposal p;
   const std::size_t m = path.size() / width;
   const std::size_t all = (m - 1) * (m - 2) / 2;
@@ -59,7 +59,7 @@ Proposal propose(const std::vector<float>& path, int width, int candidates, Loca
     coarse_samples += p.segments[k] - 1;
     fine_samples += p.fine_segments[k] - 1;
   }
-  p.fine_at_once = fine_samples <= fine->one_batch_samples() &&
+  p.fine_at_once = !certified && fine_samples <= fine->one_batch_samples() &&
                    fine_samples < coarse_samples + local->configurations_per_call_cost();
   if (p.fine_at_once) p.segments = p.fine_segments;
   return p;
@@ -105,14 +105,15 @@ double path_length(const ConfigurationMetric& metric, const std::vector<float>& 
 }
 
 double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, LocalPlanner* fine,
-                     int rounds, int candidates, std::mt19937_64* rng, std::vector<float>* path) {
+                     CertifiedMotions* certify, int rounds, int candidates, std::mt19937_64* rng,
+                     std::vector<float>* path) {
   const int width = space.width();
   const ConfigurationMetric& metric = local->metric();
   // Where calls cost more than samples, the next round's shortcuts are proposed on the
   // path this round gives if the shortcuts it takes pass their fine check, and checked
   // in the same call as that fine check; if one fails, that proposal is dropped (and
   // the generator set back), so the result is the same either way.
-  const bool pipelined = local->configurations_per_call_cost() > 0;
+  const bool pipelined = !certify && local->configurations_per_call_cost() > 0;
   Proposal ahead;  // the next round's shortcuts, already checked
   std::vector<std::uint8_t> ahead_invalid;
   bool have_ahead = false;
@@ -126,7 +127,7 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
       invalid = std::move(ahead_invalid);
       have_ahead = false;
     } else {
-      p = propose(*path, width, candidates, local, fine, rng);
+      p = propose(*path, width, candidates, local, fine, certify != nullptr, rng);
       invalid.resize(p.pairs.size());
       if (!local->check_motions(p.from.data(), p.to.data(), p.pairs.size(), p.segments.data(),
                                 invalid.data()))
@@ -184,7 +185,7 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
         if (kept.size() < m || refined) {  // there will be a next round
           const std::vector<float> if_passed = kept_path(space, *path, kept, refined);
           if (if_passed.size() / width >= 3) {
-            next = propose(if_passed, width, candidates, local, fine, rng);
+            next = propose(if_passed, width, candidates, local, fine, false, rng);
             a.insert(a.end(), next.from.begin(), next.from.end());
             b.insert(b.end(), next.to.begin(), next.to.end());
             segments.insert(segments.end(), next.segments.begin(), next.segments.end());
@@ -193,10 +194,12 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
         }
       }
       std::vector<std::uint8_t> fails(segments.size());
-      const bool checked = pipelined ? local->check_motions(a.data(), b.data(), segments.size(),
-                                                            segments.data(), fails.data())
-                                     : fine->check_motions(a.data(), b.data(), segments.size(),
-                                                           segments.data(), fails.data());
+      const bool checked =
+          certify     ? certify->check_motions(a.data(), b.data(), segments.size(), fails.data())
+          : pipelined ? local->check_motions(a.data(), b.data(), segments.size(), segments.data(),
+                                             fails.data())
+                      : fine->check_motions(a.data(), b.data(), segments.size(), segments.data(),
+                                            fails.data());
       if (!checked) return path_length(metric, *path, width);  // stopped: the path as it was
       bool all_passed = true;
       for (std::size_t u = 0; u < unchecked.size(); ++u) {

@@ -45,6 +45,11 @@ LocalPlannerOptions sliced(LocalPlannerOptions options, const PlanOptions& plan)
   return options;
 }
 
+CertifiedMotionOptions sliced(CertifiedMotionOptions options, const PlanOptions& plan) {
+  options.batch_seconds = slice_seconds(plan);
+  return options;
+}
+
 LocalPlannerOptions refined(LocalPlannerOptions options, int refinement) {
   options.resolution_fraction /= refinement;
   options.max_displacement /= refinement;
@@ -77,6 +82,7 @@ RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
       strategy_(strategy),
       options_(options),
       local_(scene, checker, sliced(options.local, options)),
+      certifier_(scene, checker, sliced(options.certified, options)),
       sampler_(scene.space, local_.metric(), options.sampler),
       roadmap_(scene.space.width()),
       rng_(options.seed),
@@ -308,7 +314,11 @@ void RoadmapPlanner::add_next_paths(const GoalDistances& to_goal, std::uint32_t 
   for (const std::uint32_t e : *batch) roadmap_.edge(e).state = EdgeState::kUnknown;
 }
 
-bool RoadmapPlanner::check_edge_motions(LocalPlanner* planner,
+bool RoadmapPlanner::certifies_path() const {
+  return options_.certify_path || options_.edges == EdgeChecks::kCertified;
+}
+
+bool RoadmapPlanner::check_edge_motions(MotionChecker* motions,
                                         const std::vector<std::uint32_t>& edges,
                                         std::vector<std::uint8_t>* invalid) const {
   const int width = scene_.space.width();
@@ -319,7 +329,7 @@ bool RoadmapPlanner::check_edge_motions(LocalPlanner* planner,
     std::copy_n(roadmap_.vertex(e.b), width, &to[i * width]);
   }
   invalid->resize(edges.size());
-  return planner->check_motions(from.data(), to.data(), edges.size(), invalid->data());
+  return motions->check_motions(from.data(), to.data(), edges.size(), invalid->data());
 }
 
 void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result) {
@@ -332,9 +342,14 @@ void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanRe
   for (std::size_t first = 0; first < edges.size(); first += kPart) {
     const std::vector<std::uint32_t> part(edges.begin() + first,
                                           edges.begin() + std::min(edges.size(), first + kPart));
-    if (!check_edge_motions(&local_, part, &invalid)) return;
-    for (std::size_t i = 0; i < part.size(); ++i)
+    const bool certified = options_.edges == EdgeChecks::kCertified;
+    if (!check_edge_motions(certified ? static_cast<MotionChecker*>(&certifier_) : &local_, part,
+                            &invalid))
+      return;
+    for (std::size_t i = 0; i < part.size(); ++i) {
       roadmap_.edge(part[i]).state = invalid[i] ? EdgeState::kInvalid : EdgeState::kValid;
+      if (certified && !invalid[i]) certified_.insert(part[i]);
+    }
     result->edges_checked += part.size();
   }
 }
@@ -343,9 +358,11 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   started_ = Clock::now();
   PlanResult result;
   local_.reset_stats();
+  certifier_.reset_stats();
   const int width = scene_.space.width();
   stop_ = [this] { return why_stop() != nullptr; };
   local_.set_stop(stop_);
+  certifier_.set_stop(stop_);
   neighbors_->set_stop(stop_);  // taken back before returning: the finder may outlive us
   const bool loaded_checked = check_loaded_milestones(&result);
   sampler_.set_endpoints(start, goal);
@@ -423,8 +440,8 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
         report("edges", result);
         continue;
       }
-      // Every edge valid: re-check finely the path's edges not yet re-checked; an edge
-      // failing that is invalid.
+      // Every edge valid: certify (or re-check finely) the path's edges not yet checked so;
+      // an edge failing that is invalid.
       std::vector<std::uint32_t> unchecked;
       for (const std::uint32_t e : path.edges)
         if (!certified_.count(e)) unchecked.push_back(e);
@@ -432,7 +449,9 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       bool checked;
       {
         StageTimer timer(&result.times.edge_checks);
-        checked = check_edge_motions(&fine, unchecked, &invalid);
+        checked = check_edge_motions(
+            certifies_path() ? static_cast<MotionChecker*>(&certifier_) : &fine, unchecked,
+            &invalid);
       }
       if (!checked) break;  // stopped: nothing certified
       bool certified = true;
@@ -467,13 +486,16 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       // Its own generator: the sampler's position depends on how many attempts the
       // time-sized batches made.
       std::mt19937_64 shortcut_rng(options_.seed ^ 0x5bd1e995u);
-      result.length = shortcut_path(scene_.space, &local_, &fine, options_.shortcut_rounds,
+      result.length = shortcut_path(scene_.space, &local_, &fine,
+                                    certifies_path() ? &certifier_ : nullptr,
+                                    options_.shortcut_rounds,
                                     options_.shortcut_candidates, &shortcut_rng, &result.path);
       report("shortcut", result);
     }
   }
-  result.samples_checked = local_.stats().samples;
-  result.edge_batches = local_.stats().batches + fine.stats().batches;
+  result.samples_checked = local_.stats().samples + certifier_.stats().checks;
+  result.edge_batches =
+      local_.stats().batches + fine.stats().batches + certifier_.stats().batches;
   result.times.total = elapsed();
   neighbors_->set_stop(nullptr);
   return result;

@@ -87,7 +87,9 @@ TEST_P(CertifiedMotionsOn, CertifyMotionsBesideTheWallWithMillimetresToSpare) {
   std::vector<float> from = beside_a, to = beside_b;
   from.insert(from.end(), open_a.begin(), open_a.end());
   to.insert(to.end(), open_b.begin(), open_b.end());
-  CertifiedMotions certified(*scene_, checker_.get());
+  CertifiedMotionOptions options;
+  options.step = 0.05;  // clearances of 25 mm to begin with: refined near the wall
+  CertifiedMotions certified(*scene_, checker_.get(), options);
   std::uint8_t invalid[2] = {9, 9};
   ASSERT_TRUE(certified.check_motions(from.data(), to.data(), 2, invalid));
   EXPECT_EQ(invalid[0], 0) << "3 mm of clearance: certified after refining";

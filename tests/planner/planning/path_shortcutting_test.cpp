@@ -52,7 +52,7 @@ TEST(PathShortcutting, FewerCallsWhereCallsCostMoreThanSamples) {
     paths[c] = found.path;
     std::mt19937_64 rng(1);
     const double length =
-        shortcut_path(scene.space, &local, &fine, rounds, candidates, &rng, &paths[c]);
+        shortcut_path(scene.space, &local, &fine, nullptr, rounds, candidates, &rng, &paths[c]);
     EXPECT_EQ(testing::path_problem(scene, paths[c]), "") << "call cost " << costs[c];
     EXPECT_LT(length, found.length);
     calls[c] = local.stats().batches + fine.stats().batches;

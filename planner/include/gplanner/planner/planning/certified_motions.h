@@ -32,6 +32,8 @@
 
 #include "gplanner/planner/checkers/collision_checker.h"
 #include "gplanner/planner/planning/motion_bound.h"
+#include "gplanner/planner/planning/motion_checker.h"
+#include "gplanner/planner/planning/timed_batch_size.h"
 
 namespace gplanner {
 
@@ -39,11 +41,17 @@ struct Scene;
 
 struct CertifiedMotionOptions {
   // Metres: along the first segments of a motion no link moves farther than this. <= 0:
-  // 1 % of the longest motion the space allows (MotionBound::longest_displacement).
+  // 2 % of the robot's size (ToleranceBand::robot_size), or 1 % of the longest motion
+  // the space allows (MotionBound::longest_displacement) where that is less.
   double step = 0;
   // Metres: a segment not certified when its bound is below this makes its motion
   // invalid. <= 0: step / 1024.
   double finest_step = 0;
+  // > 0: each round's ends are checked in calls sized from the checker's measured
+  // throughput to take about this long, the stop condition polled between them (as
+  // LocalPlannerOptions::batch_seconds); 0: whole rounds, up to max_batch ends a call.
+  double batch_seconds = 0;
+  std::size_t max_batch = std::size_t(1) << 18;
 };
 
 struct CertifiedMotionStats {
@@ -53,7 +61,7 @@ struct CertifiedMotionStats {
   std::size_t batches = 0;
 };
 
-class CertifiedMotions {
+class CertifiedMotions : public MotionChecker {
  public:
   // `scene` and `checker` must outlive this object.
   CertifiedMotions(const Scene& scene, CollisionChecker* checker,
@@ -62,18 +70,21 @@ class CertifiedMotions {
   // from, to: shape [count, width]; invalid: shape [count], 0 when every configuration
   // on the motion (both ends included) is certified free, 1 otherwise. Returns false,
   // with `invalid` incomplete, when the stop condition said to stop between rounds.
-  bool check_motions(const float* from, const float* to, std::size_t count, std::uint8_t* invalid);
+  bool check_motions(const float* from, const float* to, std::size_t count,
+                     std::uint8_t* invalid) override;
 
   void set_stop(std::function<bool()> should_stop) { should_stop_ = std::move(should_stop); }
   double step() const { return step_; }
   double finest_step() const { return finest_step_; }
   CertifiedMotionStats stats() const;
+  void reset_stats();
 
  private:
   const Scene& scene_;
   CollisionChecker* checker_;
   MotionBound bound_;
   double step_ = 0, finest_step_ = 0;
+  TimedBatchSize batch_size_;  // ends per checker call
   std::function<bool()> should_stop_;
   mutable std::mutex stats_mutex_;
   CertifiedMotionStats stats_;

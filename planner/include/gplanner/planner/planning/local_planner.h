@@ -26,6 +26,7 @@
 
 #include "gplanner/knn_gpu/configuration_metric.h"
 #include "gplanner/planner/checkers/collision_checker.h"
+#include "gplanner/planner/planning/motion_checker.h"
 #include "gplanner/planner/planning/motion_bound.h"
 #include "gplanner/planner/planning/timed_batch_size.h"
 
@@ -60,7 +61,7 @@ struct MotionCheckStats {
   std::size_t batches = 0;
 };
 
-class LocalPlanner {
+class LocalPlanner : public MotionChecker {
  public:
   // `scene` and `checker` must outlive the planner.
   LocalPlanner(const Scene& scene, CollisionChecker* checker,
@@ -74,7 +75,8 @@ class LocalPlanner {
   // sample of the motion collides, 0 otherwise. The endpoints are not checked: callers
   // check states in their own batches. Returns false, with `invalid` incomplete, when
   // the stop condition (set_stop) said to stop between two batches.
-  bool check_motions(const float* from, const float* to, std::size_t count, std::uint8_t* invalid);
+  bool check_motions(const float* from, const float* to, std::size_t count,
+                     std::uint8_t* invalid) override;
   // The same with each motion's segment count given (shape [count]; e.g. another
   // planner's segments(), so that motions at two resolutions share one set of batches).
   bool check_motions(const float* from, const float* to, std::size_t count,

@@ -8,12 +8,15 @@
 // samples (the GPU), the next round's shortcuts are checked in the same call as this
 // round's fine check (dropped if that fails: the same path, fewer calls), and a round
 // checks every shortcut with `fine` alone, in one call, where that adds fewer samples
-// than a call costs. A path valid at fine's resolution stays so. Stops, with the path as
-// it is, when `local`'s stop condition says so.
+// than a call costs. A path valid at fine's resolution stays so. With `certify`, the
+// way's shortcuts are certified by it instead of checked with `fine`: a certified path
+// stays certified (a midpoint cuts a certified motion into two motions along the same
+// configurations). Stops, with the path as it is, when `local`'s stop condition says so.
 
 #include <random>
 #include <vector>
 
+#include "gplanner/planner/planning/certified_motions.h"
 #include "gplanner/planner/planning/local_planner.h"
 
 namespace gplanner {
@@ -21,8 +24,10 @@ namespace gplanner {
 struct ConfigurationSpace;
 
 // path: shape [waypoints, width], start and goal kept; returns the metric length after.
+// certify: null, or the certified check that replaces fine's.
 double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, LocalPlanner* fine,
-                     int rounds, int candidates, std::mt19937_64* rng, std::vector<float>* path);
+                     CertifiedMotions* certify, int rounds, int candidates, std::mt19937_64* rng,
+                     std::vector<float>* path);
 
 // Metric length of a path (shape [waypoints, width]).
 double path_length(const ConfigurationMetric& metric, const std::vector<float>& path, int width);

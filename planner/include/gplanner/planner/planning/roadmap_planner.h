@@ -18,6 +18,7 @@
 #include <unordered_set>
 
 #include "gplanner/planner/checkers/collision_checker.h"
+#include "gplanner/planner/planning/certified_motions.h"
 #include "gplanner/planner/planning/goal_distances.h"
 #include "gplanner/planner/planning/graph_search.h"
 #include "gplanner/planner/planning/local_planner.h"
@@ -71,10 +72,13 @@ class RoadmapPlanner {
   // Checks the loaded milestones not yet checked, in slices; the edges of those found
   // colliding become invalid. False where the stop came first (the rest wait).
   bool check_loaded_milestones(PlanResult* result);
-  // The motions along `edges` checked by `planner` (invalid: one entry per edge); false
+  // The motions along `edges` checked by `motions` (invalid: one entry per edge); false
   // when its stop condition ended the check part way.
-  bool check_edge_motions(LocalPlanner* planner, const std::vector<std::uint32_t>& edges,
+  bool check_edge_motions(MotionChecker* motions, const std::vector<std::uint32_t>& edges,
                           std::vector<std::uint8_t>* invalid) const;
+  // Whether the path returned is certified (PlanOptions::certify_path, or edges certified
+  // throughout).
+  bool certifies_path() const;
   // The path's edges whose state is unknown.
   std::vector<std::uint32_t> unknown_edges(const GraphPath& path) const;
   // Lazy PRM: adds to `batch` (the shortest path's unknown edges) those of the next
@@ -96,6 +100,7 @@ class RoadmapPlanner {
   RoadmapStrategy strategy_;
   PlanOptions options_;
   LocalPlanner local_;
+  CertifiedMotions certifier_;
   MilestoneSampler sampler_;
   Roadmap roadmap_;
   std::mt19937_64 rng_;
@@ -107,7 +112,8 @@ class RoadmapPlanner {
   std::size_t connected_ = 0;
   // Milestones [0, loaded_unchecked_) of a loaded roadmap still to be checked.
   std::size_t loaded_unchecked_ = 0;
-  // Edges that passed the fine re-check (in the roadmap as it is now).
+  // Edges that passed the final check, certified or at the fine resolution (in the
+  // roadmap as it is now).
   std::unordered_set<std::uint32_t> certified_;
   std::chrono::steady_clock::time_point started_;
   // Every long stage runs in slices of about slice_seconds(options) (milestone batches,

@@ -154,6 +154,7 @@ def draw_panel(axes, title, knobs, ylabel, points):
         axes.set_xticks([])
         axes.set_yticks([])
         return
+    highest = 0.0
     for index, ((knob, checker), own) in enumerate(curves.items()):
         xs, ys, labels = [], [], []
         for point in own:
@@ -168,6 +169,7 @@ def draw_panel(axes, title, knobs, ylabel, points):
             labels.append(label)
         if not xs:
             continue
+        highest = max(highest, max(ys))
         axes.plot(xs, ys, marker=MARKERS[index % len(MARKERS)],
                   color=COLOURS[index % len(COLOURS)], label="%s @%s" % (knob, checker),
                   linewidth=1.2, markersize=5)
@@ -176,7 +178,7 @@ def draw_panel(axes, title, knobs, ylabel, points):
                           color=COLOURS[index % len(COLOURS)])
     axes.set_xscale("log")
     axes.set_yscale("symlog", linthresh=0.1)
-    axes.set_ylim(bottom=-0.05)
+    axes.set_ylim(-0.05, max(1.0, 2 * highest))  # errors of 0 on the axis's linear part
     axes.grid(True, which="major", alpha=0.3)
     axes.legend(fontsize=7, loc="best")
 

@@ -309,7 +309,7 @@ TEST(ErrorTimeConfig, ReadsEveryKeyAndRefusesMistakesNamingTheLineAndKey) {
     EXPECT_EQ(c.error_time.repeat, 5);
     EXPECT_EQ(c.seed, 6u);
   }
-  expect_refused(head, "3: checkers: missing");
+  expect_refused(head, "1: checkers: missing; add it");  // the map's line
   expect_refused(head + "checkers: [gpu, cuda]\n", "3: checkers[1]: 'cuda' is not one of gpu, cpu, fcl");
   expect_refused(head + "checkers: [cpu, cpu]\n", "3: checkers[1]: 'cpu' is listed twice");
   expect_refused(head + "checkers: [cpu]\ndeltas: [2.0e-5]\n", "4: deltas[0]: expected a number above 0");

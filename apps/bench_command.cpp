@@ -13,6 +13,7 @@
 #include "bench/bench_record.h"
 #include "bench/bench_runner.h"
 #include "bench/bench_summary.h"
+#include "bench/error_time_study.h"
 #include "bench/ompl_log.h"
 #include "command_line.h"
 #include "gplanner/planner/checkers/fcl_checker.h"
@@ -164,6 +165,13 @@ int run_bench(int argc, char** argv) {
   if (!save.empty()) outputs.push_back({"--save-baseline", save});
   gplanner::check_output_paths(outputs, inputs);
   const BenchConfig config = load_bench_config(config_file);
+  if (config.kind == "error-time") {
+    for (const char* option : {"baseline", "save-baseline", "report", "jobs"}) {
+      if (args.has(option))
+        throw UsageError(std::string("--") + option + " does not apply to the error-time study (" +
+                         config_file + "); leave it out");
+    }
+  }
   std::vector<GroupSummary> baseline_groups;  // its errors now, not after the runs
   if (!baseline.empty()) baseline_groups = load_baseline(baseline);
 
@@ -197,7 +205,7 @@ int run_bench(int argc, char** argv) {
     scenes.push_back(gplanner::load_scene(file));
     for (const std::string& notice : scenes.back().notices)
       std::cerr << "notice: " << gplanner::terminal_text(notice) << "\n";
-    if (config.kind == "planning") {
+    if (config.kind != "queries") {  // planning, and the study's planning curves
       // A start or goal in collision is the scene's error, said once now (exit 2), not
       // a failed run in every group.
       gplanner::FclChecker fcl(scenes.back(), /*threads=*/1);
@@ -206,6 +214,8 @@ int run_bench(int argc, char** argv) {
     if (interrupted()) return report_interruption({}, {"--out " + dir});
   }
   make_output_folder(dir);
+  if (config.kind == "error-time")
+    return run_error_time_study(config, scenes, dir, !args.flag("no-plots"));
   const std::vector<BenchGroup> groups = bench_groups(config);
   const std::string started = local_date_time();
   // Each record also goes to results.partial.csv as it comes, so that the runs done are

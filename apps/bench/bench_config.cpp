@@ -122,17 +122,21 @@ BenchConfig load_bench_config(const std::string& file) {
   const YamlReader in(file);
   BenchConfig config;
   config.file = file;
-  in.expect_map(root, "",
-                {"name", "kind", "scenes", "planners", "runs", "time_limit", "group_budget",
-                 "recheck_refinement", "simplify", "tables", "checkers", "queries",
-                 "milestones", "neighbors", "repeat", "seed", "tolerances"});
+  std::set<std::string> keys = {"name", "kind", "scenes", "planners", "runs", "time_limit",
+                                "group_budget", "recheck_refinement", "simplify", "tables",
+                                "checkers", "queries", "milestones", "neighbors", "repeat",
+                                "seed", "tolerances"};
+  keys.insert(error_time_keys().begin(), error_time_keys().end());
+  in.expect_map(root, "", keys);
   config.name = root["name"] ? in.text(root["name"], "name")
                              : std::filesystem::path(file).stem().string();
   if (config.name.empty() || config.name.find_first_of("\n\r") != std::string::npos)
     in.fail(root["name"], "name", "must be one line of text");
   config.kind = in.text(in.required(root, "", "kind"), "kind");
-  if (config.kind != "planning" && config.kind != "queries")
-    in.fail(root["kind"], "kind", "'" + config.kind + "' is not one of planning, queries");
+  if (config.kind != "planning" && config.kind != "queries" && config.kind != "error-time") {
+    in.fail(root["kind"], "kind",
+            "'" + config.kind + "' is not one of planning, queries, error-time");
+  }
 
   const YAML::Node scenes = in.required(root, "", "scenes");
   for (const std::string& scene : names(in, scenes, "scenes", {}, "scene files")) {
@@ -158,11 +162,20 @@ BenchConfig load_bench_config(const std::string& file) {
                                                   "recheck_refinement", "simplify"};
   const std::vector<std::string> query_keys = {"tables", "checkers", "queries", "milestones",
                                                "neighbors", "repeat"};
-  for (const std::string& key : config.kind == "planning" ? query_keys : planning_keys) {
-    if (root[key]) in.fail(root[key], key, "does not apply to kind: " + config.kind + "; remove it");
+  const std::vector<std::string>& own_keys = config.kind == "planning"  ? planning_keys
+                                             : config.kind == "queries" ? query_keys
+                                                                        : error_time_keys();
+  // (The study has no baseline, so no tolerances either.)
+  for (const std::string& key : keys) {
+    if (!root[key] || contains(own_keys, key)) continue;
+    if (contains(planning_keys, key) || contains(query_keys, key) ||
+        contains(error_time_keys(), key) || (key == "tolerances" && config.kind == "error-time"))
+      in.fail(root[key], key, "does not apply to kind: " + config.kind + "; remove it");
   }
 
-  if (config.kind == "planning") {
+  if (config.kind == "error-time") {
+    config.error_time = read_error_time_options(in, root);
+  } else if (config.kind == "planning") {
     const YAML::Node planners = in.required(root, "", "planners");
     for (const std::string& label : names(in, planners, "planners", {}, "PLANNER@CHECKER names")) {
       const std::size_t i = config.planners.size();

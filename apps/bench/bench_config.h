@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/error_time_config.h"
+
 namespace gplan {
 
 // One planner with one checker, written "PLANNER@CHECKER" in a configuration:
@@ -37,7 +39,7 @@ struct BenchTolerances {
 struct BenchConfig {
   std::string file;  // where it was read from
   std::string name;  // the experiment's name
-  std::string kind;  // "planning" or "queries"
+  std::string kind;  // "planning", "queries" or "error-time"
   std::vector<std::string> scenes;  // scene files, resolved against the config's folder
   // planning
   std::vector<PlannerChoice> planners;
@@ -57,7 +59,9 @@ struct BenchConfig {
   std::uint64_t milestones = 10000;
   int neighbors = 15;
   int repeat = 5;
-  // both
+  // error-time (the error-against-time study)
+  ErrorTimeOptions error_time;
+  // all kinds
   std::uint64_t seed = 1;  // run i (from 0) of every group uses seed + i
   BenchTolerances tolerances;
 };

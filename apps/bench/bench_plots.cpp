@@ -21,6 +21,9 @@ namespace gplan {
 // apps/bench/plot_bench.py, generated into the build folder by apps/CMakeLists.txt.
 extern const unsigned char kPlotBenchScript[];
 extern const std::size_t kPlotBenchScriptSize;
+// apps/bench/plot_error_time.py, the same way.
+extern const unsigned char kPlotErrorTimeScript[];
+extern const std::size_t kPlotErrorTimeScriptSize;
 
 namespace {
 
@@ -162,9 +165,10 @@ std::string find_python(std::string* notice) {
   return "";
 }
 
-}  // namespace
-
-bool draw_bench_plots(const std::string& csv, const std::string& out_dir, std::string* notice) {
+// Runs the embedded script `name` (its bytes `script_bytes`, `size` of them) on `csv` and
+// `out_dir`, as draw_bench_plots says.
+bool run_plot_script(const char* name, const unsigned char* script_bytes, std::size_t size,
+                     const std::string& csv, const std::string& out_dir, std::string* notice) {
   notice->clear();
   const std::string python = find_python(notice);
   if (python.empty()) return false;
@@ -184,23 +188,36 @@ bool draw_bench_plots(const std::string& csv, const std::string& out_dir, std::s
     *notice = "plots not drawn: " + python + " could not be started";
     return false;
   }
-  const bool sent = write_all(script.write, kPlotBenchScript, kPlotBenchScriptSize);
+  const bool sent = write_all(script.write, script_bytes, size);
   script.close_write();
   const int code = wait_for(pid);
   if (code == 0 && sent) return true;
   if (code == 0) {
     *notice = "plots not drawn: " + python + " did not read the plotting script";
   } else if (code < 0) {
-    *notice = "plots not drawn: plot_bench.py (run by " + python + ") ended by signal " +
+    *notice = std::string("plots not drawn: ") + name + " (run by " + python + ") ended by signal " +
               std::to_string(-code);
   } else {
-    *notice = "plots not drawn: plot_bench.py (run by " + python + ") exited with code " +
+    *notice = std::string("plots not drawn: ") + name + " (run by " + python + ") exited with code " +
               std::to_string(code) +
               (code == 2   ? " (the CSV is not one gplan bench wrote)"
                : code == 1 ? " (an output could not be written)"
                            : "");
   }
   return false;
+}
+
+}  // namespace
+
+bool draw_bench_plots(const std::string& csv, const std::string& out_dir, std::string* notice) {
+  return run_plot_script("plot_bench.py", kPlotBenchScript, kPlotBenchScriptSize, csv, out_dir,
+                         notice);
+}
+
+bool draw_error_time_plots(const std::string& csv, const std::string& out_dir,
+                           std::string* notice) {
+  return run_plot_script("plot_error_time.py", kPlotErrorTimeScript, kPlotErrorTimeScriptSize,
+                         csv, out_dir, notice);
 }
 
 }  // namespace gplan

@@ -1,8 +1,9 @@
 #pragma once
 // The plots of `gplan bench` (plan-time distributions per scene and planner, the query
-// tables' batch times), drawn by apps/bench/plot_bench.py with matplotlib. The script is
-// embedded in the binary (apps/CMakeLists.txt generates it as a source), so that an
-// installed gplan needs no file from the source tree; it runs as `PYTHON - CSV OUT_DIR`
+// tables' batch times, the error-against-time study's curves), drawn by
+// apps/bench/plot_bench.py and plot_error_time.py with matplotlib. The scripts are
+// embedded in the binary (apps/CMakeLists.txt generates them as sources), so that an
+// installed gplan needs no file from the source tree; each runs as `PYTHON - CSV OUT_DIR`
 // with the script on its standard input, no shell in between.
 //
 // PYTHON: $GPLANNER_PYTHON where set (and then only it), else python3 from PATH, else
@@ -19,5 +20,10 @@ namespace gplan {
 // output that cannot be written: exit 1), its message goes to stderr as it wrote it, and
 // `notice` says that the plots were not drawn and the script's exit code.
 bool draw_bench_plots(const std::string& csv, const std::string& out_dir, std::string* notice);
+
+// The same for the error-against-time study's CSV (apps/bench/error_time_record.h), with
+// apps/bench/plot_error_time.py: per scene, error against time, one curve per knob.
+bool draw_error_time_plots(const std::string& csv, const std::string& out_dir,
+                           std::string* notice);
 
 }  // namespace gplan

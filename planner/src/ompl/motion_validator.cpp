@@ -17,7 +17,24 @@ MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, cons
     : ompl::base::MotionValidator(si),
       scene_(scene),
       checker_(checker),
-      local_(scene, checker, options) {}
+      local_(scene, checker, options),
+      certifier_(scene, checker) {}
+
+MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
+                                 CollisionChecker* checker, EdgeChecks edges,
+                                 const CertifiedMotionOptions& certified)
+    : ompl::base::MotionValidator(si),
+      scene_(scene),
+      checker_(checker),
+      local_(scene, checker, plan_options(scene).local),
+      edges_(edges),
+      certifier_(scene, checker, certified) {}
+
+bool MotionValidator::certified_free(const float* a, const float* b) const {
+  std::uint8_t invalid = 1;
+  certifier_.check_motions(a, b, 1, &invalid);
+  return invalid == 0;
+}
 
 bool MotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const {
   std::pair<ompl::base::State*, double> unused{nullptr, 0.0};
@@ -32,16 +49,27 @@ bool MotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base:
   state_to_row(scene_, s2, b.data());
   // Beyond the bounds the end state is invalid; samples between two states within the
   // (convex) bounds stay within them.
+  const bool certified = edges_ == EdgeChecks::kCertified;
+  if (certified && si_->satisfiesBounds(s2) && certified_free(a.data(), b.data())) {
+    count(1, 0);
+    return true;
+  }
   double fraction = si_->satisfiesBounds(s2) ? local_.last_valid_fraction(a.data(), b.data()) : -1;
-  if (fraction == 1.0) {
+  if (fraction == 1.0 && !certified) {
     count(1, 0);
     return true;
   }
   count(0, 1);
-  if (fraction < 0) {
-    // Only the end state is out of bounds: the last valid sample before it.
+  if (fraction < 0 || fraction == 1.0) {
+    // Only the end state is out of bounds (or, certified, no sample collides but the
+    // motion is not certified): the last sample before it.
     const int n = local_.segments(a.data(), b.data());
     fraction = static_cast<double>(n - 1) / n;
+  }
+  if (certified && fraction > 0) {
+    std::vector<float> last(width);
+    scene_.space.interpolate(a.data(), b.data(), fraction, last.data());
+    if (!certified_free(a.data(), last.data())) fraction = 0;
   }
   lastValid.second = fraction;
   if (lastValid.first) si_->getStateSpace()->interpolate(s1, s2, fraction, lastValid.first);
@@ -57,9 +85,13 @@ void MotionValidator::checkMotions(
     state_to_row(scene_, motions[i].first, &from[i * width]);
     state_to_row(scene_, motions[i].second, &to[i * width]);
   }
-  std::vector<std::uint8_t> invalid(n, 0), end(n, 1);
-  local_.check_motions(from.data(), to.data(), n, invalid.data());
-  checker_->check(to.data(), n, end.data());
+  std::vector<std::uint8_t> invalid(n, 0), end(n, 0);
+  if (edges_ == EdgeChecks::kCertified) {
+    certifier_.check_motions(from.data(), to.data(), n, invalid.data());  // ends included
+  } else {
+    local_.check_motions(from.data(), to.data(), n, invalid.data());
+    checker_->check(to.data(), n, end.data());
+  }
   valid->assign(n, 0);
   std::size_t valid_count = 0;
   for (std::size_t i = 0; i < n; ++i) {

@@ -19,6 +19,7 @@
 
 #include "gplanner/planner/checkers/cpu_checker.h"
 #include "gplanner/planner/ompl/motion_validator.h"
+#include "gplanner/planner/planning/certified_motions.h"
 #include "gplanner/planner/ompl/roadmap_planners.h"
 #include "gplanner/planner/ompl/state_space.h"
 #include "gplanner/planner/ompl/state_validity_checker.h"
@@ -170,6 +171,59 @@ TEST(OmplMotionValidator, AgreesWithOmplsDiscreteMotionValidator) {
   f.si->freeState(last_omp);
   for (std::size_t i = 0; i < motions.size(); i += 2)
     f.si->freeState(const_cast<ob::State*>(motions[i].second));
+  for (ob::State* s : states) f.si->freeState(s);
+}
+
+// Certified: every answer is CertifiedMotions's, one motion at a time and in a batch; a
+// motion that is not certified has a last valid state up to which it certifies.
+TEST(OmplMotionValidator, CertifiedAnswersAreCertifiedMotions) {
+  Fixture f("piano.yaml");
+  const ompl_adapters::MotionValidator validator(f.si, f.scene, &f.checker,
+                                                 EdgeChecks::kCertified);
+  CertifiedMotions certified(f.scene, &f.checker);
+  const std::size_t n = 40, w = f.scene.space.width();
+  // Motions from valid states (OMPL's validators assume the start valid).
+  std::vector<ob::State*> states;
+  for (ob::State* s : f.states(20 * n, 41)) {
+    if (states.size() < 2 * n && (states.size() % 2 == 1 || f.si->isValid(s))) {
+      states.push_back(s);
+    } else {
+      f.si->freeState(s);
+    }
+  }
+  ASSERT_EQ(states.size(), 2 * n);
+  std::vector<std::pair<const ob::State*, const ob::State*>> motions;
+  std::vector<float> from(n * w), to(n * w), end(w);
+  for (std::size_t i = 0; i < n; ++i) {
+    // A tenth of the way toward another state: a roadmap edge's length.
+    f.si->getStateSpace()->interpolate(states[2 * i], states[2 * i + 1], 0.1, states[2 * i + 1]);
+    motions.emplace_back(states[2 * i], states[2 * i + 1]);
+    state_to_row(f.scene, states[2 * i], &from[i * w]);
+    state_to_row(f.scene, states[2 * i + 1], &to[i * w]);
+  }
+  std::vector<std::uint8_t> invalid(n);
+  ASSERT_TRUE(certified.check_motions(from.data(), to.data(), n, invalid.data()));
+  std::vector<std::uint8_t> batch;
+  validator.checkMotions(motions, &batch);
+  ob::State* last = f.si->allocState();
+  std::size_t valid = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::pair<ob::State*, double> last_valid{last, -1.0};
+    const bool ok = validator.checkMotion(motions[i].first, motions[i].second, last_valid);
+    EXPECT_EQ(ok, invalid[i] == 0) << i;
+    EXPECT_EQ(batch[i], invalid[i] == 0 ? 1 : 0) << i;
+    valid += ok;
+    if (ok) continue;
+    ASSERT_GE(last_valid.second, 0.0);
+    ASSERT_LT(last_valid.second, 1.0);
+    state_to_row(f.scene, last, end.data());
+    std::uint8_t prefix = 1;
+    ASSERT_TRUE(certified.check_motions(&from[i * w], end.data(), 1, &prefix));
+    EXPECT_EQ(prefix, 0) << i << ": the motion up to its last valid state is certified";
+  }
+  EXPECT_GT(valid, 0u);
+  EXPECT_LT(valid, n) << "no invalid motion: the last valid states were not tested";
+  f.si->freeState(last);
   for (ob::State* s : states) f.si->freeState(s);
 }
 

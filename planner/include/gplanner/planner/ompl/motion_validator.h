@@ -7,6 +7,11 @@
 // backend takes concurrent calls; see collision_checker.h for which run in parallel);
 // only the counters are updated under a lock. The batch extension checks many motions
 // in one call, level by level (LocalPlanner::check_motions).
+//
+// Certified (EdgeChecks::kCertified): every motion is certified free along its whole
+// length (CertifiedMotions), not sampled; a motion that is not certified is invalid, and
+// its last valid state is the last sample before the first collision if the motion up to
+// it certifies, else the start state.
 
 #include <ompl/base/MotionValidator.h>
 
@@ -16,7 +21,9 @@
 #include <vector>
 
 #include "gplanner/planner/checkers/collision_checker.h"
+#include "gplanner/planner/planning/certified_motions.h"
 #include "gplanner/planner/planning/local_planner.h"
+#include "gplanner/planner/planning/plan_options.h"
 
 namespace gplanner {
 
@@ -32,6 +39,10 @@ class MotionValidator : public ompl::base::MotionValidator {
                   CollisionChecker* checker);
   MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
                   CollisionChecker* checker, const LocalPlannerOptions& options);
+  // Sampled at the scene's resolution, or certified (with `certified`'s step).
+  MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
+                  CollisionChecker* checker, EdgeChecks edges,
+                  const CertifiedMotionOptions& certified = {});
 
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
@@ -46,11 +57,15 @@ class MotionValidator : public ompl::base::MotionValidator {
  private:
   // Adds to OMPL's counters (valid_, invalid_), which calls on other threads update too.
   void count(std::size_t valid, std::size_t invalid) const;
+  // Certified: whether the motion a -> b (rows) is certified free.
+  bool certified_free(const float* a, const float* b) const;
 
   const Scene& scene_;
   CollisionChecker* checker_;
   mutable std::mutex counters_mutex_;
   mutable LocalPlanner local_;  // takes concurrent calls
+  EdgeChecks edges_ = EdgeChecks::kSampled;
+  mutable CertifiedMotions certifier_;  // takes concurrent calls
 };
 
 }  // namespace ompl_adapters

@@ -61,6 +61,9 @@ struct CertifiedMotionStats {
   std::size_t batches = 0;
 };
 
+// Calls from several threads at once are safe (each with its own segments; the checker
+// takes concurrent calls; the statistics are added under a lock); set_stop and
+// reset_stats are for the owner's thread, not while calls run.
 class CertifiedMotions : public MotionChecker {
  public:
   // `scene` and `checker` must outlive this object.

@@ -105,11 +105,11 @@ ErrorTimeOptions read_error_time_options(const YamlReader& in, const YAML::Node&
   }
   const double smallest_step =
       *std::min_element(options.certified_steps.begin(), options.certified_steps.end());
-  if (!(options.truth_step <= smallest_step / 4)) {
+  if (!(options.truth_step <= smallest_step)) {
     const YAML::Node at = root["truth_step"] ? root["truth_step"] : root["certified_steps"];
     in.fail(at, root["truth_step"] ? "truth_step" : "certified_steps",
             "the ground truth's step " + number_text(options.truth_step) +
-                " must be at most a quarter of the smallest certified step (" +
+                " must be at most the smallest certified step (" +
                 number_text(smallest_step) + "); make truth_step smaller or the steps larger");
   }
   if (root["deltas"]) {

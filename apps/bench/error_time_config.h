@@ -30,10 +30,10 @@ struct ErrorTimeOptions {
   std::vector<double> edge_resolutions = {4, 2, 1, 0.5, 0.25, 0.125};
   // Certified edges: first step (MotionBound metres) as fractions of the longest motion
   // the scene's space allows.
-  std::vector<double> certified_steps = {0.04, 0.02, 0.01, 0.005};
-  // The ground truth's step, the same kind of fraction; at most a quarter of the
-  // smallest of certified_steps.
-  double truth_step = 0.0005;
+  std::vector<double> certified_steps = {0.004, 0.002, 0.001};
+  // The ground truth's first step, the same kind of fraction, at most the smallest of
+  // certified_steps (it refines near obstacles down to 1/1024 of it).
+  double truth_step = 0.001;
   // The tolerance band (planner.delta_fraction), each value in (0, 1e-5].
   std::vector<double> deltas = {1e-5, 3e-6, 1e-6};
   // Planning: first-round milestones of ours-lazyprm, each a point of the milestones

@@ -313,8 +313,8 @@ TEST(ErrorTimeConfig, ReadsEveryKeyAndRefusesMistakesNamingTheLineAndKey) {
   expect_refused(head + "checkers: [gpu, cuda]\n", "3: checkers[1]: 'cuda' is not one of gpu, cpu, fcl");
   expect_refused(head + "checkers: [cpu, cpu]\n", "3: checkers[1]: 'cpu' is listed twice");
   expect_refused(head + "checkers: [cpu]\ndeltas: [2.0e-5]\n", "4: deltas[0]: expected a number above 0");
-  expect_refused(head + "checkers: [cpu]\ncertified_steps: [0.01]\ntruth_step: 0.005\n",
-                 "5: truth_step: the ground truth's step 0.005 must be at most a quarter");
+  expect_refused(head + "checkers: [cpu]\ncertified_steps: [0.01]\ntruth_step: 0.02\n",
+                 "5: truth_step: the ground truth's step 0.02 must be at most the smallest");
   expect_refused(head + "checkers: [cpu]\nedge_resolutions: []\n", "4: edge_resolutions: expected a list");
   expect_refused(head + "checkers: [cpu]\nplan_milestones: [100.5]\n",
                  "4: plan_milestones[0]: expected a whole number");

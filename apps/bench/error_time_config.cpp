@@ -55,29 +55,46 @@ std::vector<double> numbers(const YamlReader& in, const YAML::Node& node, const 
   return out;
 }
 
+// A list of checkers (gpu, cpu, fcl), each once; `required`: at least one.
+std::vector<std::string> read_checkers(const YamlReader& in, const YAML::Node& checkers,
+                                       const std::string& name, bool required) {
+  if (!checkers.IsSequence() || (required && checkers.size() == 0))
+    in.fail(checkers, name, "expected a list of checkers (one or more of: gpu, cpu, fcl)");
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < checkers.size(); ++i) {
+    const std::string key = name + "[" + std::to_string(i) + "]";
+    const std::string checker = in.text(checkers[i], key);
+    if (checker != "gpu" && checker != "cpu" && checker != "fcl")
+      in.fail(checkers[i], key, "'" + checker + "' is not one of gpu, cpu, fcl");
+    if (std::find(out.begin(), out.end(), checker) != out.end())
+      in.fail(checkers[i], key, "'" + checker + "' is listed twice; list it once");
+    out.push_back(checker);
+  }
+  return out;
+}
+
 }  // namespace
 
 const std::vector<std::string>& error_time_keys() {
   static const std::vector<std::string> keys = {
-      "checkers",   "states",       "edges",    "roadmap_milestones", "edge_resolutions",
-      "certified_steps", "truth_step", "deltas", "plan_milestones",   "runs",
-      "time_limit", "repeat"};
+      "checkers",        "plan_checkers", "states", "edges",           "roadmap_milestones",
+      "edge_resolutions", "certified_steps", "truth_step", "deltas", "plan_milestones",
+      "runs",            "time_limit",    "repeat"};
   return keys;
 }
 
 ErrorTimeOptions read_error_time_options(const YamlReader& in, const YAML::Node& root) {
   ErrorTimeOptions options;
-  const YAML::Node checkers = in.required(root, "", "checkers");
-  if (!checkers.IsSequence() || checkers.size() == 0)
-    in.fail(checkers, "checkers", "expected a list of checkers (one or more of: gpu, cpu, fcl)");
-  for (std::size_t i = 0; i < checkers.size(); ++i) {
-    const std::string key = "checkers[" + std::to_string(i) + "]";
-    const std::string name = in.text(checkers[i], key);
-    if (name != "gpu" && name != "cpu" && name != "fcl")
-      in.fail(checkers[i], key, "'" + name + "' is not one of gpu, cpu, fcl");
-    if (std::find(options.checkers.begin(), options.checkers.end(), name) != options.checkers.end())
-      in.fail(checkers[i], key, "'" + name + "' is listed twice; list it once");
-    options.checkers.push_back(name);
+  options.checkers = read_checkers(in, in.required(root, "", "checkers"), "checkers", true);
+  options.plan_checkers = options.checkers;
+  if (root["plan_checkers"]) {
+    options.plan_checkers = read_checkers(in, root["plan_checkers"], "plan_checkers", false);
+    for (std::size_t i = 0; i < options.plan_checkers.size(); ++i) {
+      const std::string& c = options.plan_checkers[i];
+      if (std::find(options.checkers.begin(), options.checkers.end(), c) == options.checkers.end())
+        in.fail(root["plan_checkers"][i], "plan_checkers[" + std::to_string(i) + "]",
+                "'" + c + "' is not in checkers; add it there or leave it out here");
+    }
   }
   if (root["states"]) options.states = whole(in, root["states"], "states", 1, 100000000);
   if (root["edges"]) options.edges = whole(in, root["edges"], "edges", 1, 10000000);

@@ -20,6 +20,9 @@ struct ErrorTimeOptions {
   // Which curves run: gpu (traversal, precision, delta, edges and planning on the gpu
   // backend), cpu, fcl. At least one.
   std::vector<std::string> checkers;
+  // The planning curves' checkers, among `checkers` (default: all of them; planning on
+  // FCL is slow on articulated robots).
+  std::vector<std::string> plan_checkers;
   std::uint64_t states = 10000;  // N seeded random states
   std::uint64_t edges = 1000;    // M seeded roadmap-like edges
   // Free milestones of the roadmap the edges are taken from (0: the scene's

@@ -91,8 +91,8 @@ TEST(GplanBenchErrorTime, CiConfigurationWritesItsCsvTableAndPlotsWithNumbersTha
   EXPECT_EQ(read_file(out + "/results.csv").substr(0, 40),
             std::string("scene,knob,value,checker,time_s,missed,e"));
   // Every curve of cpu and fcl, every point of each: 2 precision, 2 delta (cpu), 5 + 5
-  // edge resolutions, 2 + 2 certified steps, and planning: 2 + 4 points per checker.
-  EXPECT_EQ(rows.size(), 2u + 2 + 10 + 4 + 12);
+  // edge resolutions, 2 + 2 certified steps, and planning: 2 + 3 points per checker.
+  EXPECT_EQ(rows.size(), 2u + 2 + 10 + 4 + 10);
   for (const Row& row : rows) {
     SCOPED_TRACE(row.at("knob") + " " + row.at("value") + " " + row.at("checker"));
     EXPECT_EQ(row.at("scene"), "thin_wall");
@@ -133,10 +133,11 @@ TEST(GplanBenchErrorTime, CiConfigurationWritesItsCsvTableAndPlotsWithNumbersTha
     EXPECT_EQ(count(states[0], "missed"), 0);
     EXPECT_EQ(count(states[0], "total"), 2000);
     EXPECT_EQ(states[0].at("value"), checker == "fcl" ? "double" : "float");
-    // Plans with every edge-checks setting, each solved and never through the wall.
+    // Plans with every edge-checks setting; certified paths never through the wall.
     const std::vector<Row> plans = of_knob(rows, "plan-edges", checker);
-    ASSERT_EQ(plans.size(), 4u);
-    for (const Row& row : plans) EXPECT_EQ(count(row, "path_fails"), 0);
+    ASSERT_EQ(plans.size(), 3u);
+    for (const Row& row : plans)
+      if (row.at("value") != "sampled") EXPECT_EQ(count(row, "path_fails"), 0) << row.at("value");
   }
   EXPECT_EQ(of_knob(rows, "precision", "fcl")[0].at("extra"), "0");  // the truth itself
   EXPECT_EQ(of_knob(rows, "delta", "cpu").size(), 2u);

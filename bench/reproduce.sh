@@ -35,6 +35,9 @@
 #      regression gplan bench config/bench/regression.yaml, OMPL's   regression/
 #                 single-threaded planners 4 fewer than the CPUs at
 #                 a time
+#      error-time gplan bench config/bench/error_time.yaml: error     error_time/
+#                 against time for piano, helicopter, humanoid and
+#                 pr2_reach (issue 21)
 #    Every call also writes OUT_DIR/machine.txt (GPU, driver, CPU, commit, date,
 #    tables). Progress goes to stderr. The exit status is 1 when a program failed (the
 #    other tables still run). Where one command may run at most 10 minutes, split the
@@ -43,6 +46,7 @@
 #      bench/reproduce.sh OUT_DIR knn time-limit hostile
 #      bench/reproduce.sh OUT_DIR seed-tables
 #      bench/reproduce.sh OUT_DIR regression
+#      bench/reproduce.sh OUT_DIR error-time
 #      timeout 590 bench/reproduce.sh OUT_DIR plan   (more than 10 minutes: the runs
 #      done stay in OUT_DIR/plan_times/results.partial.csv)
 # 3. Back on the build machine: copy OUT_DIR to bench/runs/NAME/ and print the tables
@@ -80,7 +84,8 @@ case ${1:-} in ''|-h|--help) usage; exit 2 ;; esac
 mkdir -p "$1"
 out=$(cd "$1" && pwd)
 shift
-all=(gpu-tests peak collision agreement knn time-limit hostile seed-tables regression plan)
+all=(gpu-tests peak collision agreement knn time-limit hostile seed-tables regression plan
+     error-time)
 tables=("$@")
 [ ${#tables[@]} -gt 0 ] || tables=("${all[@]}")
 for t in "${tables[@]}"; do
@@ -198,6 +203,9 @@ for t in "${tables[@]}"; do
     regression)
       bench_config config/bench/regression.yaml "$out/regression" \
         --jobs $((cores > 5 ? cores - 4 : 1)) || failed+=("$t")
+      ;;
+    error-time)
+      bench_config config/bench/error_time.yaml "$out/error_time" || failed+=("$t")
       ;;
   esac
 done

@@ -36,8 +36,10 @@
 #                 single-threaded planners 4 fewer than the CPUs at
 #                 a time
 #      error-time gplan bench config/bench/error_time.yaml: error     error_time/
-#                 against time for piano, helicopter, humanoid and
-#                 pr2_reach (issue 21)
+#                 against time for the piano and the helicopter
+#                 (issue 21)
+#      error-time-articulated  the same for the humanoid and      error_time_articulated/
+#                 pr2_reach (config/bench/error_time_articulated.yaml)
 #    Every call also writes OUT_DIR/machine.txt (GPU, driver, CPU, commit, date,
 #    tables). Progress goes to stderr. The exit status is 1 when a program failed (the
 #    other tables still run). Where one command may run at most 10 minutes, split the
@@ -47,6 +49,7 @@
 #      bench/reproduce.sh OUT_DIR seed-tables
 #      bench/reproduce.sh OUT_DIR regression
 #      bench/reproduce.sh OUT_DIR error-time
+#      bench/reproduce.sh OUT_DIR error-time-articulated
 #      timeout 590 bench/reproduce.sh OUT_DIR plan   (more than 10 minutes: the runs
 #      done stay in OUT_DIR/plan_times/results.partial.csv)
 # 3. Back on the build machine: copy OUT_DIR to bench/runs/NAME/ and print the tables
@@ -85,7 +88,7 @@ mkdir -p "$1"
 out=$(cd "$1" && pwd)
 shift
 all=(gpu-tests peak collision agreement knn time-limit hostile seed-tables regression plan
-     error-time)
+     error-time error-time-articulated)
 tables=("$@")
 [ ${#tables[@]} -gt 0 ] || tables=("${all[@]}")
 for t in "${tables[@]}"; do
@@ -206,6 +209,10 @@ for t in "${tables[@]}"; do
       ;;
     error-time)
       bench_config config/bench/error_time.yaml "$out/error_time" || failed+=("$t")
+      ;;
+    error-time-articulated)
+      bench_config config/bench/error_time_articulated.yaml "$out/error_time_articulated" \
+        || failed+=("$t")
       ;;
   esac
 done

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "bench/bench_plots.h"
+#include "bench/bench_samples.h"
 #include "bench/error_time_truth.h"
 #include "bench/error_time_workload.h"
 #include "gplanner/planner/checkers/checker_factory.h"
@@ -126,7 +127,7 @@ class SceneStudy {
               std::to_string(options_.edges) + " edges");
     const auto start = Clock::now();
     truth_ = std::make_unique<GroundTruth>(scene_, step_m);
-    states_ = study_states(scene_, options_.states, config_.seed);
+    states_ = uniform_states(scene_, options_.states, config_.seed);
     state_truth_ = truth_->states(states_.data(), options_.states);
     const std::size_t milestones =
         options_.roadmap_milestones

@@ -1,6 +1,6 @@
 #pragma once
 // The seeded workload of the error-against-time study (apps/bench/error_time_study.h):
-// random states, and edges like those of a roadmap. It depends only on the scene, the
+// edges like those of a roadmap (its states: bench_samples' uniform_states). It depends only on the scene, the
 // counts and the seed, never on a checker under study, so every checker and every knob
 // value answers the same states and edges.
 
@@ -15,11 +15,6 @@ class CollisionChecker;
 }  // namespace gplanner
 
 namespace gplan {
-
-// `count` configurations drawn uniformly within the scene's bounds and joint limits
-// (shape [count, width]), as `gplan check --seed` draws them.
-std::vector<float> study_states(const gplanner::Scene& scene, std::size_t count,
-                                std::uint64_t seed);
 
 // Edges' two ends, shape [count, width] each.
 struct StudyEdges {

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "bench/bench_config.h"
+#include "bench/bench_samples.h"
 #include "gplanner/common/physical_memory.h"
 #include "gplanner/planner/checkers/checker_factory.h"
 #include "gplanner/planner/checkers/cpu_checker.h"
@@ -72,51 +73,6 @@ void check_options(const std::string& table, const QueryTableOptions& options, i
             std::to_string(options.neighbors) + " neighbours",
         static_cast<double>(options.milestones) * options.neighbors * (2 * row_bytes + 1));
   }
-}
-
-// The collision-queries batch: as `gplan check --seed` draws it.
-std::vector<float> sample_queries(const gplanner::Scene& scene, std::size_t n, std::uint64_t seed) {
-  const std::size_t width = scene.space.width();
-  std::vector<float> q(n * width);
-  std::mt19937_64 rng(seed);
-  for (std::size_t i = 0; i < n; ++i) scene.space.sample_uniform(&rng, &q[i * width]);
-  return q;
-}
-
-// The first `count` uniform samples the cpu backend finds free (shape [count, width]);
-// empty when interrupted.
-std::vector<float> free_milestones(const gplanner::Scene& scene, std::size_t count,
-                                   std::uint64_t seed) {
-  const std::size_t width = scene.space.width();
-  gplanner::CpuChecker cpu(scene);
-  std::mt19937_64 rng(seed);
-  std::vector<float> found, batch;
-  std::vector<std::uint8_t> colliding;
-  std::size_t found_count = 0, attempts = 0;
-  const std::size_t most_attempts = kAttemptsPerMilestone * count;
-  while (found_count < count) {
-    if (interrupted()) return {};
-    if (attempts >= most_attempts) {
-      throw std::runtime_error(scene.file + ": local-planning found only " +
-                               std::to_string(found_count) + " free milestones of the " +
-                               std::to_string(count) + " asked for in " + std::to_string(attempts) +
-                               " uniform samples (the free space is too small a part " +
-                               "of the configuration space); ask for fewer milestones");
-    }
-    const std::size_t n =
-        std::min(std::max<std::size_t>(2 * (count - found_count), 1024), most_attempts - attempts);
-    batch.resize(n * width);
-    colliding.resize(n);
-    for (std::size_t i = 0; i < n; ++i) scene.space.sample_uniform(&rng, &batch[i * width]);
-    cpu.check(batch.data(), n, colliding.data());
-    attempts += n;
-    for (std::size_t i = 0; i < n && found_count < count; ++i) {
-      if (colliding[i]) continue;
-      found.insert(found.end(), batch.begin() + i * width, batch.begin() + (i + 1) * width);
-      ++found_count;
-    }
-  }
-  return found;
 }
 
 // The roadmap's edges, each undirected edge once: their two ends (shape [edges, width]
@@ -218,9 +174,13 @@ void run_query_group(const gplanner::Scene& scene, const std::string& experiment
   std::vector<float> configurations;
   RoadmapEdges edges;
   if (queries) {
-    configurations = sample_queries(scene, options.queries, options.seed);
+    configurations = uniform_states(scene, options.queries, options.seed);
   } else {
-    const std::vector<float> milestones = free_milestones(scene, options.milestones, options.seed);
+    gplanner::CpuChecker cpu(scene);
+    std::mt19937_64 rng(options.seed);
+    const std::vector<float> milestones = free_states(
+        scene, &cpu, options.milestones, &rng, [] { return interrupted(); }, "local-planning",
+        "milestones");
     if (milestones.empty()) return;  // interrupted
     if (!connect_nearest(scene, milestones, options.neighbors, &edges)) return;
   }

@@ -89,7 +89,6 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
   stats.motions = count;
   std::vector<float> ends, clearances;
   std::vector<std::uint8_t> verdicts, plain;
-  std::vector<std::size_t> end_of;  // per open segment: its first end's index in `ends`
   while (!open.empty()) {
     if (should_stop_ && should_stop_()) return false;
     ++stats.rounds;
@@ -104,7 +103,6 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
     // the segment (a configuration inside lies within half a segment of an end).
     ends.clear();
     clearances.clear();
-    end_of.assign(open.size(), 0);
     std::vector<std::size_t> end_index(open.size() * 2, SIZE_MAX);
     for (std::size_t i = 0; i < open.size(); ++i) {
       const Segment& s = open[i];

@@ -314,6 +314,12 @@ void RoadmapPlanner::add_next_paths(const GoalDistances& to_goal, std::uint32_t 
   for (const std::uint32_t e : *batch) roadmap_.edge(e).state = EdgeState::kUnknown;
 }
 
+void RoadmapPlanner::set_options(const PlanOptions& options) {
+  const bool certified = certifies_path();
+  options_ = options;
+  if (certifies_path() != certified) certified_.clear();
+}
+
 bool RoadmapPlanner::certifies_path() const {
   return options_.certify_path || options_.edges == EdgeChecks::kCertified;
 }

@@ -59,8 +59,9 @@ class RoadmapPlanner {
   void set_roadmap(Roadmap roadmap);
   const PlanOptions& options() const { return options_; }
   // New settings for the next solve() (the roadmap stays; the local planner keeps the
-  // resolution it was made with).
-  void set_options(const PlanOptions& options) { options_ = options; }
+  // resolution it was made with, the certified motions their step). Edges that passed
+  // the final check pass it again where the check changes between fine and certified.
+  void set_options(const PlanOptions& options);
   RoadmapStrategy strategy() const { return strategy_; }
 
  private:

@@ -53,7 +53,8 @@ void check_output_folder(const std::string& dir) {
     if (!fs::is_directory(fs::status(dir, error)))
       throw UsageError("--out " + dir + ": is not a folder; name a new folder for the results");
     if (!fs::is_empty(dir, error))
-      throw UsageError("--out " + dir + ": the folder has files in it; name a new or empty folder "
+      throw UsageError("--out " + dir +
+                       ": the folder has files in it; name a new or empty folder "
                        "(the results of an earlier run are not replaced)");
     gplanner::writable_output_target("--out", (fs::path(dir) / "results.csv").string());
     return;
@@ -107,8 +108,7 @@ int conclude(const BenchConfig& config, const std::vector<BenchRecord>& records,
   }
   bool regressed = false;
   if (!baseline_file.empty()) {
-    const BaselineVerdict verdict =
-        compare_with_baseline(groups, baseline, config.tolerances);
+    const BaselineVerdict verdict = compare_with_baseline(groups, baseline, config.tolerances);
     regressed = verdict.regressed();
     summary << "\nagainst the baseline " << baseline_file << ": "
             << (regressed ? "REGRESSION" : "within tolerance") << "\n";
@@ -116,7 +116,8 @@ int conclude(const BenchConfig& config, const std::vector<BenchRecord>& records,
     for (const std::string& line : verdict.notes) summary << "  note: " << line << "\n";
   }
   std::istringstream lines(summary.str());
-  for (std::string line; std::getline(lines, line);) std::cout << gplanner::terminal_text(line) << "\n";
+  for (std::string line; std::getline(lines, line);)
+    std::cout << gplanner::terminal_text(line) << "\n";
   std::cout << std::flush;
   write_text((fs::path(dir) / "summary.txt").string(), summary.str());
   if (!save_baseline.empty()) {
@@ -156,7 +157,8 @@ int run_bench(int argc, char** argv) {
   const std::string baseline = args.text("baseline", "");
   const std::string save = args.text("save-baseline", "");
   const bool report = args.has("report");
-  if (report && args.has("out")) throw UsageError("--report DIR reads an earlier run's folder; leave out --out");
+  if (report && args.has("out"))
+    throw UsageError("--report DIR reads an earlier run's folder; leave out --out");
 
   // Inputs and outputs checked before any work.
   std::vector<gplanner::NamedFile> inputs{{"the configuration", config_file}};
@@ -183,12 +185,11 @@ int run_bench(int argc, char** argv) {
     try {
       records = read_bench_csv(csv);
     } catch (const std::runtime_error& e) {
-      throw gplanner::InputError({"--report", 0, ""},
-                                 std::string(e.what()) + "; name the folder of a gplan bench run, "
-                                                         "its results.csv as gplan wrote it");
+      throw gplanner::InputError({"--report", 0, ""}, std::string(e.what()) +
+                                                          "; name the folder of a gplan bench run, "
+                                                          "its results.csv as gplan wrote it");
     }
-    return conclude(config, records, dir, baseline, baseline_groups, save,
-                    !args.flag("no-plots"));
+    return conclude(config, records, dir, baseline, baseline_groups, save, !args.flag("no-plots"));
   }
 
   const std::string dir =
@@ -232,7 +233,8 @@ int run_bench(int argc, char** argv) {
       (fs::path(dir) / "failed_paths").string());
   partial_csv.close();
   if (interrupted()) return report_interruption({partial + " (the runs done)"}, {});
-  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double total =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   write_text((fs::path(dir) / "results.csv").string(), csv_text(records));
   write_text((fs::path(dir) / "config.yaml").string(),

@@ -38,11 +38,11 @@ std::string output_name(const gplanner::NamedFile& output) {
 
 int run_plan(int argc, char** argv) {
   catch_interruptions();
-  const CommandLine args(argc, argv, 2,
-                         {"planner", "backend", "seed", "time-limit", "milestones", "traversal",
-                          "threads", "load-roadmap", "save-roadmap", "out", "picture", "edges",
-                          "path-check"},
-                         {"json"});
+  const CommandLine args(
+      argc, argv, 2,
+      {"planner", "backend", "seed", "time-limit", "milestones", "traversal", "threads",
+       "load-roadmap", "save-roadmap", "out", "picture", "edges", "path-check"},
+      {"json"});
   if (args.positionals().size() != 1)
     throw UsageError("gplan plan takes one scene file, not " +
                      std::to_string(args.positionals().size()) + "; give exactly one");

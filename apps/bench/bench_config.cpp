@@ -19,8 +19,7 @@ namespace {
 using gplanner::InputError;
 using gplanner::YamlReader;
 
-inline constexpr gplanner::InputFileKind kBenchConfigFile{"bench configuration",
-                                                         gplanner::kMiB};
+inline constexpr gplanner::InputFileKind kBenchConfigFile{"bench configuration", gplanner::kMiB};
 
 std::string listed(const std::vector<std::string>& names) {
   std::string list;
@@ -33,9 +32,8 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
 }
 
 // A list of names, each one of `allowed`, none twice, at least one.
-std::vector<std::string> names(const YamlReader& in, const YAML::Node& node,
-                               const std::string& key, const std::vector<std::string>& allowed,
-                               const std::string& what) {
+std::vector<std::string> names(const YamlReader& in, const YAML::Node& node, const std::string& key,
+                               const std::vector<std::string>& allowed, const std::string& what) {
   if (!node.IsSequence() || node.size() == 0)
     in.fail(node, key, "expected a list of " + what + " (one or more of: " + listed(allowed) + ")");
   std::vector<std::string> out;
@@ -44,7 +42,8 @@ std::vector<std::string> names(const YamlReader& in, const YAML::Node& node,
     const std::string name = in.text(node[i], item_key);
     if (!allowed.empty() && !contains(allowed, name))
       in.fail(node[i], item_key, "'" + name + "' is not one of " + listed(allowed));
-    if (contains(out, name)) in.fail(node[i], item_key, "'" + name + "' is listed twice; list it once");
+    if (contains(out, name))
+      in.fail(node[i], item_key, "'" + name + "' is listed twice; list it once");
     out.push_back(name);
   }
   return out;
@@ -56,18 +55,18 @@ std::uint64_t whole(const YamlReader& in, const YAML::Node& node, const std::str
   const double value = in.number(node, key);
   if (value != std::floor(value) || value < double(low) || value > double(high)) {
     in.fail(node, key,
-            "expected a whole number from " + std::to_string(low) + " to " +
-                std::to_string(high) + ", found '" + node.Scalar() + "'");
+            "expected a whole number from " + std::to_string(low) + " to " + std::to_string(high) +
+                ", found '" + node.Scalar() + "'");
   }
   return static_cast<std::uint64_t>(value);
 }
 
-double positive(const YamlReader& in, const YAML::Node& node, const std::string& key,
-                double high) {
+double positive(const YamlReader& in, const YAML::Node& node, const std::string& key, double high) {
   const double value = in.number(node, key);
   if (!(value > 0) || value > high) {
-    in.fail(node, key, "expected a number above 0 and at most " + std::to_string(high) +
-                           ", found '" + node.Scalar() + "'");
+    in.fail(node, key,
+            "expected a number above 0 and at most " + std::to_string(high) + ", found '" +
+                node.Scalar() + "'");
   }
   return value;
 }
@@ -79,16 +78,20 @@ BenchTolerances read_tolerances(const YamlReader& in, const YAML::Node& node) {
                 {"time_ratio", "time_floor", "success_rate", "path_length_ratio"});
   if (node["time_ratio"]) {
     t.time_ratio = in.number(node["time_ratio"], "tolerances.time_ratio");
-    if (!(t.time_ratio >= 1)) in.fail(node["time_ratio"], "tolerances.time_ratio", "must be at least 1 (1.5: 50 % slower is a regression)");
+    if (!(t.time_ratio >= 1))
+      in.fail(node["time_ratio"], "tolerances.time_ratio",
+              "must be at least 1 (1.5: 50 % slower is a regression)");
   }
   if (node["time_floor"]) {
     t.time_floor_s = in.number(node["time_floor"], "tolerances.time_floor");
-    if (!(t.time_floor_s >= 0)) in.fail(node["time_floor"], "tolerances.time_floor", "must be 0 or more seconds");
+    if (!(t.time_floor_s >= 0))
+      in.fail(node["time_floor"], "tolerances.time_floor", "must be 0 or more seconds");
   }
   if (node["success_rate"]) {
     t.success_rate = in.number(node["success_rate"], "tolerances.success_rate");
     if (!(t.success_rate >= 0 && t.success_rate <= 1))
-      in.fail(node["success_rate"], "tolerances.success_rate", "must be from 0 to 1 (the drop in the fraction of runs solved)");
+      in.fail(node["success_rate"], "tolerances.success_rate",
+              "must be from 0 to 1 (the drop in the fraction of runs solved)");
   }
   if (node["path_length_ratio"]) {
     t.path_length_ratio = in.number(node["path_length_ratio"], "tolerances.path_length_ratio");
@@ -122,14 +125,15 @@ BenchConfig load_bench_config(const std::string& file) {
   const YamlReader in(file);
   BenchConfig config;
   config.file = file;
-  std::set<std::string> keys = {"name", "kind", "scenes", "planners", "runs", "time_limit",
-                                "group_budget", "recheck_refinement", "simplify", "tables",
-                                "checkers", "queries", "milestones", "neighbors", "repeat",
-                                "seed", "tolerances"};
+  std::set<std::string> keys = {"name",       "kind",       "scenes",       "planners",
+                                "runs",       "time_limit", "group_budget", "recheck_refinement",
+                                "simplify",   "tables",     "checkers",     "queries",
+                                "milestones", "neighbors",  "repeat",       "seed",
+                                "tolerances"};
   keys.insert(error_time_keys().begin(), error_time_keys().end());
   in.expect_map(root, "", keys);
-  config.name = root["name"] ? in.text(root["name"], "name")
-                             : std::filesystem::path(file).stem().string();
+  config.name =
+      root["name"] ? in.text(root["name"], "name") : std::filesystem::path(file).stem().string();
   if (config.name.empty() || config.name.find_first_of("\n\r") != std::string::npos)
     in.fail(root["name"], "name", "must be one line of text");
   config.kind = in.text(in.required(root, "", "kind"), "kind");
@@ -152,16 +156,17 @@ BenchConfig load_bench_config(const std::string& file) {
     const std::string stem = std::filesystem::path(config.scenes[i]).stem().string();
     if (!stems.insert(stem).second) {
       in.fail(scenes[i], "scenes[" + std::to_string(i) + "]",
-              "two scenes are named '" + stem + "' (the file name without .yaml names a scene "
-              "in the results); rename one file");
+              "two scenes are named '" + stem +
+                  "' (the file name without .yaml names a scene "
+                  "in the results); rename one file");
     }
   }
 
   // Keys of the other kind are refused rather than ignored.
-  const std::vector<std::string> planning_keys = {"planners", "runs", "time_limit", "group_budget",
-                                                  "recheck_refinement", "simplify"};
-  const std::vector<std::string> query_keys = {"tables", "checkers", "queries", "milestones",
-                                               "neighbors", "repeat"};
+  const std::vector<std::string> planning_keys = {
+      "planners", "runs", "time_limit", "group_budget", "recheck_refinement", "simplify"};
+  const std::vector<std::string> query_keys = {"tables",     "checkers",  "queries",
+                                               "milestones", "neighbors", "repeat"};
   const std::vector<std::string>& own_keys = config.kind == "planning"  ? planning_keys
                                              : config.kind == "queries" ? query_keys
                                                                         : error_time_keys();
@@ -180,7 +185,8 @@ BenchConfig load_bench_config(const std::string& file) {
     for (const std::string& label : names(in, planners, "planners", {}, "PLANNER@CHECKER names")) {
       const std::size_t i = config.planners.size();
       const std::size_t at = label.find('@');
-      PlannerChoice choice{label.substr(0, at), at == std::string::npos ? "" : label.substr(at + 1)};
+      PlannerChoice choice{label.substr(0, at),
+                           at == std::string::npos ? "" : label.substr(at + 1)};
       if (at == std::string::npos || !contains(bench_planners(), choice.planner) ||
           !contains(bench_plan_checkers(), choice.checker)) {
         in.fail(planners[i], "planners[" + std::to_string(i) + "]",
@@ -191,7 +197,8 @@ BenchConfig load_bench_config(const std::string& file) {
       config.planners.push_back(choice);
     }
     if (root["runs"]) config.runs = int(whole(in, root["runs"], "runs", 1, 100000));
-    if (root["time_limit"]) config.time_limit_s = positive(in, root["time_limit"], "time_limit", 86400);
+    if (root["time_limit"])
+      config.time_limit_s = positive(in, root["time_limit"], "time_limit", 86400);
     if (root["group_budget"])
       config.group_budget_s = positive(in, root["group_budget"], "group_budget", 1e7);
     if (root["recheck_refinement"]) {
@@ -211,7 +218,8 @@ BenchConfig load_bench_config(const std::string& file) {
     if (root["queries"]) config.queries = whole(in, root["queries"], "queries", 1, 100000000);
     if (root["milestones"])
       config.milestones = whole(in, root["milestones"], "milestones", 2, 10000000);
-    if (root["neighbors"]) config.neighbors = int(whole(in, root["neighbors"], "neighbors", 1, 1000));
+    if (root["neighbors"])
+      config.neighbors = int(whole(in, root["neighbors"], "neighbors", 1, 1000));
     if (root["repeat"]) config.repeat = int(whole(in, root["repeat"], "repeat", 1, 1000));
   }
   if (root["seed"]) config.seed = whole(in, root["seed"], "seed", 1, 4000000000ULL);

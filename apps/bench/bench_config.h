@@ -37,9 +37,9 @@ struct BenchTolerances {
 };
 
 struct BenchConfig {
-  std::string file;  // where it was read from
-  std::string name;  // the experiment's name
-  std::string kind;  // "planning", "queries" or "error-time"
+  std::string file;                 // where it was read from
+  std::string name;                 // the experiment's name
+  std::string kind;                 // "planning", "queries" or "error-time"
   std::vector<std::string> scenes;  // scene files, resolved against the config's folder
   // planning
   std::vector<PlannerChoice> planners;

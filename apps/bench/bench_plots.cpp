@@ -195,11 +195,11 @@ bool run_plot_script(const char* name, const unsigned char* script_bytes, std::s
   if (code == 0) {
     *notice = "plots not drawn: " + python + " did not read the plotting script";
   } else if (code < 0) {
-    *notice = std::string("plots not drawn: ") + name + " (run by " + python + ") ended by signal " +
-              std::to_string(-code);
+    *notice = std::string("plots not drawn: ") + name + " (run by " + python +
+              ") ended by signal " + std::to_string(-code);
   } else {
-    *notice = std::string("plots not drawn: ") + name + " (run by " + python + ") exited with code " +
-              std::to_string(code) +
+    *notice = std::string("plots not drawn: ") + name + " (run by " + python +
+              ") exited with code " + std::to_string(code) +
               (code == 2   ? " (the CSV is not one gplan bench wrote)"
                : code == 1 ? " (an output could not be written)"
                            : "");
@@ -216,8 +216,8 @@ bool draw_bench_plots(const std::string& csv, const std::string& out_dir, std::s
 
 bool draw_error_time_plots(const std::string& csv, const std::string& out_dir,
                            std::string* notice) {
-  return run_plot_script("plot_error_time.py", kPlotErrorTimeScript, kPlotErrorTimeScriptSize,
-                         csv, out_dir, notice);
+  return run_plot_script("plot_error_time.py", kPlotErrorTimeScript, kPlotErrorTimeScriptSize, csv,
+                         out_dir, notice);
 }
 
 }  // namespace gplan

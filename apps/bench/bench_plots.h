@@ -23,7 +23,6 @@ bool draw_bench_plots(const std::string& csv, const std::string& out_dir, std::s
 
 // The same for the error-against-time study's CSV (apps/bench/error_time_record.h), with
 // apps/bench/plot_error_time.py: per scene, error against time, one curve per knob.
-bool draw_error_time_plots(const std::string& csv, const std::string& out_dir,
-                           std::string* notice);
+bool draw_error_time_plots(const std::string& csv, const std::string& out_dir, std::string* notice);
 
 }  // namespace gplan

@@ -34,10 +34,10 @@ std::vector<float> free_states(const gplanner::Scene& scene, gplanner::Collision
     if (attempts >= most_attempts) {
       throw std::runtime_error(scene.file + ": " + who + " found only " +
                                std::to_string(found_count) + " free milestones of the " +
-                               std::to_string(count) + " asked for in " +
-                               std::to_string(attempts) +
+                               std::to_string(count) + " asked for in " + std::to_string(attempts) +
                                " uniform samples (the free space is too small a part of the "
-                               "configuration space); ask for fewer " + fewer);
+                               "configuration space); ask for fewer " +
+                               fewer);
     }
     const std::size_t n =
         std::min(std::max<std::size_t>(2 * (count - found_count), 1024), most_attempts - attempts);

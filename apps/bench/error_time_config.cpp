@@ -24,8 +24,9 @@ std::uint64_t whole(const YamlReader& in, const YAML::Node& node, const std::str
                     std::uint64_t low, std::uint64_t high) {
   const double value = in.number(node, key);
   if (value != std::floor(value) || value < double(low) || value > double(high)) {
-    in.fail(node, key, "expected a whole number from " + std::to_string(low) + " to " +
-                           std::to_string(high) + ", found '" + node.Scalar() + "'");
+    in.fail(node, key,
+            "expected a whole number from " + std::to_string(low) + " to " + std::to_string(high) +
+                ", found '" + node.Scalar() + "'");
   }
   return static_cast<std::uint64_t>(value);
 }
@@ -76,10 +77,19 @@ std::vector<std::string> read_checkers(const YamlReader& in, const YAML::Node& c
 }  // namespace
 
 const std::vector<std::string>& error_time_keys() {
-  static const std::vector<std::string> keys = {
-      "checkers",        "plan_checkers", "states", "edges",           "roadmap_milestones",
-      "edge_resolutions", "certified_steps", "truth_step", "deltas", "plan_milestones",
-      "runs",            "time_limit",    "repeat"};
+  static const std::vector<std::string> keys = {"checkers",
+                                                "plan_checkers",
+                                                "states",
+                                                "edges",
+                                                "roadmap_milestones",
+                                                "edge_resolutions",
+                                                "certified_steps",
+                                                "truth_step",
+                                                "deltas",
+                                                "plan_milestones",
+                                                "runs",
+                                                "time_limit",
+                                                "repeat"};
   return keys;
 }
 
@@ -117,7 +127,8 @@ ErrorTimeOptions read_error_time_options(const YamlReader& in, const YAML::Node&
     if (!(options.truth_step > 0 && options.truth_step <= 1)) {
       in.fail(root["truth_step"], "truth_step",
               "expected a number above 0 and at most 1 (a fraction of the longest motion), "
-              "found '" + root["truth_step"].Scalar() + "'");
+              "found '" +
+                  root["truth_step"].Scalar() + "'");
     }
   }
   const double smallest_step =
@@ -126,24 +137,24 @@ ErrorTimeOptions read_error_time_options(const YamlReader& in, const YAML::Node&
     const YAML::Node at = root["truth_step"] ? root["truth_step"] : root["certified_steps"];
     in.fail(at, root["truth_step"] ? "truth_step" : "certified_steps",
             "the ground truth's step " + number_text(options.truth_step) +
-                " must be at most the smallest certified step (" +
-                number_text(smallest_step) + "); make truth_step smaller or the steps larger");
+                " must be at most the smallest certified step (" + number_text(smallest_step) +
+                "); make truth_step smaller or the steps larger");
   }
   if (root["deltas"]) {
     options.deltas = numbers(in, root["deltas"], "deltas", 0, false, 1e-5, false,
                              "planner.delta_fraction values, within (0, 1e-5]");
   }
   if (root["plan_milestones"]) {
-    options.plan_milestones = numbers(in, root["plan_milestones"], "plan_milestones", 2, true,
-                                      1e7, true, "first-round milestone counts");
+    options.plan_milestones = numbers(in, root["plan_milestones"], "plan_milestones", 2, true, 1e7,
+                                      true, "first-round milestone counts");
   }
   if (root["runs"]) options.runs = int(whole(in, root["runs"], "runs", 1, 100000));
   if (root["time_limit"]) {
     options.time_limit_s = in.number(root["time_limit"], "time_limit");
     if (!(options.time_limit_s > 0 && options.time_limit_s <= 86400)) {
       in.fail(root["time_limit"], "time_limit",
-              "expected seconds above 0 and at most 86400, found '" +
-                  root["time_limit"].Scalar() + "'");
+              "expected seconds above 0 and at most 86400, found '" + root["time_limit"].Scalar() +
+                  "'");
     }
   }
   if (root["repeat"]) options.repeat = int(whole(in, root["repeat"], "repeat", 1, 1000));

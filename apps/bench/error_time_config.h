@@ -42,9 +42,9 @@ struct ErrorTimeOptions {
   // Planning: first-round milestones of ours-lazyprm, each a point of the milestones
   // curve; the edge-checks curve plans at the scene's own count.
   std::vector<double> plan_milestones = {500, 1000, 2000, 4000};
-  int runs = 5;             // planning runs per point (seeds seed, seed + 1, ...)
+  int runs = 5;              // planning runs per point (seeds seed, seed + 1, ...)
   double time_limit_s = 30;  // per planning run
-  int repeat = 3;           // timed calls per state or edge point (the median is kept)
+  int repeat = 3;            // timed calls per state or edge point (the median is kept)
 };
 
 // The error-time keys (besides name, kind, scenes, seed) and their readers.

@@ -4,7 +4,6 @@
 #include <ostream>
 #include <sstream>
 
-
 namespace gplan {
 namespace {
 
@@ -49,8 +48,8 @@ void write_error_time_csv_line(std::ostream& out, const ErrorTimePoint& p) {
   out << csv_field(p.scene) << ',' << csv_field(p.knob) << ',' << csv_field(p.value) << ','
       << csv_field(p.checker) << ',' << time << ',' << count_text(p.missed) << ','
       << count_text(p.extra) << ',' << count_text(p.undecided) << ',' << p.total << ','
-      << count_text(p.runs) << ',' << count_text(p.solved) << ',' << count_text(p.path_fails)
-      << ',' << count_text(p.path_undecided) << '\n';
+      << count_text(p.runs) << ',' << count_text(p.solved) << ',' << count_text(p.path_fails) << ','
+      << count_text(p.path_undecided) << '\n';
 }
 
 void write_error_time_table(std::ostream& out, const std::string& experiment,
@@ -70,9 +69,8 @@ void write_error_time_table(std::ostream& out, const std::string& experiment,
     }
     out << "| " << cell(p.knob) << " | " << cell(p.value) << " | " << cell(p.checker) << " | "
         << time_text(p.time_s) << " | " << count_text(p.missed) << " | " << count_text(p.extra)
-        << " | " << count_text(p.undecided) << " | " << p.total << " | "
-        << count_text(p.solved) << " | " << count_text(p.path_fails) << " | "
-        << count_text(p.path_undecided) << " |\n";
+        << " | " << count_text(p.undecided) << " | " << p.total << " | " << count_text(p.solved)
+        << " | " << count_text(p.path_fails) << " | " << count_text(p.path_undecided) << " |\n";
   }
   if (!notices.empty()) {
     out << "\nLeft out:\n\n";

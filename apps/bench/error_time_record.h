@@ -14,12 +14,12 @@ namespace gplan {
 
 struct ErrorTimePoint {
   std::string scene;
-  std::string knob;     // edge-resolution, max-displacement, certified-step, precision,
-                        // traversal, delta, milestones, plan-edges
-  std::string value;    // the knob's value as text (0.0025, gpu-packet, certified+certify)
-  std::string checker;  // gpu, gpu-basic, gpu-packet, gpu-balanced, cpu, fcl
-  double time_s = 0;    // states/edges: the median of the timed calls; planning: the
-                        // median plan time over the runs
+  std::string knob;          // edge-resolution, max-displacement, certified-step, precision,
+                             // traversal, delta, milestones, plan-edges
+  std::string value;         // the knob's value as text (0.0025, gpu-packet, certified+certify)
+  std::string checker;       // gpu, gpu-basic, gpu-packet, gpu-balanced, cpu, fcl
+  double time_s = 0;         // states/edges: the median of the timed calls; planning: the
+                             // median plan time over the runs
   long long missed = -1;     // truth colliding, reported free (-1: not applicable)
   long long extra = -1;      // truth free, reported colliding
   long long undecided = -1;  // edges the truth leaves undecided (excluded from both)

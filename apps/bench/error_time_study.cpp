@@ -84,8 +84,8 @@ std::unique_ptr<gplanner::CollisionChecker> make_checker(const gplanner::Scene& 
 // Everything one scene's study shares: the truth, the workload, the checkers.
 class SceneStudy {
  public:
-  SceneStudy(const gplanner::Scene& scene, const std::string& scene_name,
-             const BenchConfig& config, const std::function<void(const ErrorTimePoint&)>& emit,
+  SceneStudy(const gplanner::Scene& scene, const std::string& scene_name, const BenchConfig& config,
+             const std::function<void(const ErrorTimePoint&)>& emit,
              const std::function<void(const std::string&)>& notice,
              const std::function<void(const std::string&)>& progress,
              const std::function<bool()>& stop)
@@ -143,9 +143,9 @@ class SceneStudy {
       return std::count(edge_truth_.begin(), edge_truth_.end(), t);
     };
     progress_(name_ + ": ground truth made in " +
-              number_text(std::chrono::duration<double>(Clock::now() - start).count()) + " s: " +
-              std::to_string(std::count(state_truth_.begin(), state_truth_.end(), 1)) + " of " +
-              std::to_string(options_.states) + " states colliding; " +
+              number_text(std::chrono::duration<double>(Clock::now() - start).count()) +
+              " s: " + std::to_string(std::count(state_truth_.begin(), state_truth_.end(), 1)) +
+              " of " + std::to_string(options_.states) + " states colliding; " +
               std::to_string(count(MotionTruth::kColliding)) + " of " +
               std::to_string(edges_.count) + " edges colliding, " +
               std::to_string(count(MotionTruth::kFree)) + " free, " +
@@ -159,8 +159,10 @@ class SceneStudy {
       std::string why;
       std::unique_ptr<gplanner::CollisionChecker> checker = make_checker(scene_, backend, {}, &why);
       if (!checker) {
-        notice_(name_ + ": the gpu curves (precision, traversal, delta, edges and planning on "
-                "gpu) are left out: no GPU can be used here (" + why + ")");
+        notice_(name_ +
+                ": the gpu curves (precision, traversal, delta, edges and planning on "
+                "gpu) are left out: no GPU can be used here (" +
+                why + ")");
         continue;
       }
       checkers_.push_back({backend, std::move(checker)});
@@ -177,12 +179,13 @@ class SceneStudy {
   // The states' point of `checker`; false when stopped.
   bool state_point(ErrorTimePoint p, gplanner::CollisionChecker* checker) {
     std::vector<std::uint8_t> verdicts(options_.states);
-    if (!timed(options_.repeat,
-               [&] {
-                 checker->check(states_.data(), options_.states, verdicts.data());
-                 return !stopped();
-               },
-               &p.time_s))
+    if (!timed(
+            options_.repeat,
+            [&] {
+              checker->check(states_.data(), options_.states, verdicts.data());
+              return !stopped();
+            },
+            &p.time_s))
       return false;
     p.missed = p.extra = p.undecided = 0;
     for (std::size_t i = 0; i < options_.states; ++i) {
@@ -208,8 +211,7 @@ class SceneStudy {
         std::string why;
         const auto gpu = make_checker(scene_, "gpu", options, &why);
         if (!gpu) continue;  // cannot happen: the gpu ran above
-        if (!state_point(point("traversal", traversal, std::string("gpu-") + traversal),
-                         gpu.get()))
+        if (!state_point(point("traversal", traversal, std::string("gpu-") + traversal), gpu.get()))
           return false;
       }
     }
@@ -228,10 +230,10 @@ class SceneStudy {
   }
 
   // The edges' point of an edge check; false when stopped.
-  bool edge_point(ErrorTimePoint p,
-                  const std::function<bool(std::uint8_t* invalid)>& check_edges) {
+  bool edge_point(ErrorTimePoint p, const std::function<bool(std::uint8_t* invalid)>& check_edges) {
     std::vector<std::uint8_t> invalid(edges_.count);
-    if (!timed(options_.repeat, [&] { return check_edges(invalid.data()); }, &p.time_s))
+    if (!timed(
+            options_.repeat, [&] { return check_edges(invalid.data()); }, &p.time_s))
       return false;
     p.missed = p.extra = p.undecided = 0;
     for (std::size_t e = 0; e < edges_.count; ++e) {

@@ -76,8 +76,7 @@ std::string GroundTruth::path(const std::vector<float>& path, const std::functio
     return waypoints == 1 && !states(path.data(), 1)[0] ? "pass" : "fail";
   }
   const std::size_t segments = waypoints - 1;
-  const std::vector<MotionTruth> truth =
-      motions(path.data(), path.data() + width, segments, stop);
+  const std::vector<MotionTruth> truth = motions(path.data(), path.data() + width, segments, stop);
   if (truth.empty()) return "";
   if (std::count(truth.begin(), truth.end(), MotionTruth::kColliding)) return "fail";
   if (std::count(truth.begin(), truth.end(), MotionTruth::kUndecided)) return "undecided";

@@ -16,15 +16,15 @@
 namespace gplan {
 
 StudyEdges study_edges(const gplanner::Scene& scene, gplanner::CollisionChecker* truth,
-                       std::size_t milestones, int neighbors, std::size_t count,
-                       std::uint64_t seed, const std::function<bool()>& stop) {
+                       std::size_t milestones, int neighbors, std::size_t count, std::uint64_t seed,
+                       const std::function<bool()>& stop) {
   const std::size_t width = scene.space.width();
   std::mt19937_64 rng(seed);
   const std::vector<float> points =
       free_states(scene, truth, milestones, &rng, stop, "the study", "roadmap_milestones");
   if (points.empty()) return {};
-  const std::unique_ptr<gplanner::NeighborFinder> finder = gplanner::make_neighbor_finder(
-      gplanner::make_metric(scene.space, scene.planner), "cpu");
+  const std::unique_ptr<gplanner::NeighborFinder> finder =
+      gplanner::make_neighbor_finder(gplanner::make_metric(scene.space, scene.planner), "cpu");
   if (stop) finder->set_stop(stop);
   std::vector<int> nearest;
   if (!finder->nearest_of_new(points.data(), milestones, 0, neighbors, &nearest)) return {};

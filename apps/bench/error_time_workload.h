@@ -1,7 +1,7 @@
 #pragma once
 // The seeded workload of the error-against-time study (apps/bench/error_time_study.h):
-// edges like those of a roadmap (its states: bench_samples' uniform_states). It depends only on the scene, the
-// counts and the seed, never on a checker under study, so every checker and every knob
+// edges like those of a roadmap (its states: bench_samples' uniform_states). It depends only on the
+// scene, the counts and the seed, never on a checker under study, so every checker and every knob
 // value answers the same states and edges.
 
 #include <cstddef>
@@ -30,7 +30,7 @@ struct StudyEdges {
 // stop; throws std::runtime_error when the free space is too small to find the
 // milestones (fewer than 1 in 1000 samples free).
 StudyEdges study_edges(const gplanner::Scene& scene, gplanner::CollisionChecker* truth,
-                       std::size_t milestones, int neighbors, std::size_t count,
-                       std::uint64_t seed, const std::function<bool()>& stop);
+                       std::size_t milestones, int neighbors, std::size_t count, std::uint64_t seed,
+                       const std::function<bool()>& stop);
 
 }  // namespace gplan

@@ -135,7 +135,8 @@ TableChecker make_table_checker(const gplanner::Scene& scene, const std::string&
   made.checker = gplanner::make_collision_checker(scene, backend, options, &made.note);
   // A fallback would put the cpu backend's times under a gpu name, or beside the cpu
   // group's own: the group is refused instead.
-  if (made.checker->backend() != backend) throw std::runtime_error(fallback_refusal(name, made.note));
+  if (made.checker->backend() != backend)
+    throw std::runtime_error(fallback_refusal(name, made.note));
   made.name = name;
   return made;
 }

@@ -39,11 +39,10 @@ void CpuBatchChecker::check(const float* configurations, std::size_t n, std::uin
     // in shared totals in every test made the threads wait on each other's writes.
     detail::TraversalCounts counts;
     for (std::size_t i = begin; i < end; ++i) {
-      verdicts[i] =
-          detail::query_collides(view, configurations + i * width, query_clearances(view, i), X_WL,
-                                 &counts)
-              ? 1
-              : 0;
+      verdicts[i] = detail::query_collides(view, configurations + i * width,
+                                           query_clearances(view, i), X_WL, &counts)
+                        ? 1
+                        : 0;
     }
     bv_tests += counts.bv_tests;
     triangle_tests += counts.triangle_tests;

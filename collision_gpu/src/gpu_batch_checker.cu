@@ -103,16 +103,14 @@ struct GpuBatchChecker::Impl {
     return std::max<std::size_t>(1, std::min(n, fit));
   }
 
-  void check(const float* h_q, std::size_t n, std::uint8_t* h_verdicts,
-             const float* h_clearances) {
+  void check(const float* h_q, std::size_t n, std::uint8_t* h_verdicts, const float* h_clearances) {
     stats = {};
     if (n == 0) return;
     CollisionModelView call_view = view;
     const bool is_balanced = options.traversal == Traversal::kBalanced;
     const std::size_t width = view.width;
     const std::size_t links = h_clearances ? static_cast<std::size_t>(view.link_count) : 0;
-    const std::size_t per_query =
-        (width + links) * sizeof(float) + 1 + 4 * sizeof(unsigned);
+    const std::size_t per_query = (width + links) * sizeof(float) + 1 + 4 * sizeof(unsigned);
     std::size_t chunk =
         chunk_size(n, per_query, is_balanced ? traversals::BalancedTraversal::kChunkShare : 0.9);
     if (is_balanced) balanced->reserve(chunk, memory_cap);

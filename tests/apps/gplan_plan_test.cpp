@@ -107,8 +107,8 @@ void expect_certified_paths_through_the_window(const std::string& backend) {
       const std::string out = scratch.path() + "/path" + std::to_string(seed) + ".yaml";
       std::filesystem::remove(out);
       const CommandResult run =
-          run_gplan("plan '" + file + "' --backend " + backend + " --seed " +
-                    std::to_string(seed) + " " + mode + " --json --out '" + out + "'");
+          run_gplan("plan '" + file + "' --backend " + backend + " --seed " + std::to_string(seed) +
+                    " " + mode + " --json --out '" + out + "'");
       ASSERT_EQ(run.exit_code, 0) << mode << "\n" << run.output;
       const std::string problem =
           path_recheck_problem(scene, read_path(out, scene.space.width()), 100, true);
@@ -138,13 +138,12 @@ TEST(GplanPlanGpu, CertifiedPathsAtACoarseResolutionPassFclAHundredTimesFiner) {
 
 TEST(GplanPlan, EdgeOptionsAreChecked) {
   const std::string scene = "'" + scene_path("piano.yaml") + "'";
-  for (const std::string& arguments :
-       {std::string("--edges all"), std::string("--path-check none"),
-        std::string("--edges certified --path-check fine")}) {
+  for (const std::string& arguments : {std::string("--edges all"), std::string("--path-check none"),
+                                       std::string("--edges certified --path-check fine")}) {
     const CommandResult run = run_gplan("plan " + scene + " --backend cpu " + arguments);
     EXPECT_EQ(run.exit_code, 2) << arguments << "\n" << run.output;
     EXPECT_NE(run.output.find(arguments.find("path-check") != std::string::npos ? "--path-check"
-                                                                                 : "--edges"),
+                                                                                : "--edges"),
               std::string::npos)
         << run.output;
   }

@@ -106,7 +106,8 @@ struct FclChecker::Impl {
     }
     if (!environment.empty()) environment_bvh = internal::fcl_mesh(environment);
     checked_pairs = robot.checked_pairs();
-    for (const auto& [a, b] : checked_pairs) pair_ancestors.push_back(robot.deepest_common_link(a, b));
+    for (const auto& [a, b] : checked_pairs)
+      pair_ancestors.push_back(robot.deepest_common_link(a, b));
 
     for (const Link& link : robot.links)
       link_solids.push_back(

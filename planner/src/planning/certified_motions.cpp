@@ -118,9 +118,9 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
         return e;
       };
       const bool shares = i > 0 && open[i - 1].motion == s.motion && open[i - 1].t1 == s.t0;
-      if (!s.good0) end_index[2 * i] = shares && end_index[2 * i - 1] != SIZE_MAX
-                                           ? end_index[2 * i - 1]
-                                           : add_end(s.t0);
+      if (!s.good0)
+        end_index[2 * i] =
+            shares && end_index[2 * i - 1] != SIZE_MAX ? end_index[2 * i - 1] : add_end(s.t0);
       if (!s.good1) end_index[2 * i + 1] = add_end(s.t1);
     }
     const std::size_t n_ends = ends.size() / width;

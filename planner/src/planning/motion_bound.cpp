@@ -90,7 +90,8 @@ void MotionBound::link_displacements(const float* a, const float* b, double* out
 
 double MotionBound::displacement(const float* a, const float* b) const {
   double motion = base_displacement(a, b);
-  for (std::size_t i = 0; i < joint_reach_.size(); ++i) motion += joint_change(a, b, i) * joint_reach_[i];
+  for (std::size_t i = 0; i < joint_reach_.size(); ++i)
+    motion += joint_change(a, b, i) * joint_reach_[i];
   return motion;
 }
 

@@ -455,9 +455,9 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       bool checked;
       {
         StageTimer timer(&result.times.edge_checks);
-        checked = check_edge_motions(
-            certifies_path() ? static_cast<MotionChecker*>(&certifier_) : &fine, unchecked,
-            &invalid);
+        checked =
+            check_edge_motions(certifies_path() ? static_cast<MotionChecker*>(&certifier_) : &fine,
+                               unchecked, &invalid);
       }
       if (!checked) break;  // stopped: nothing certified
       bool certified = true;
@@ -492,16 +492,14 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       // Its own generator: the sampler's position depends on how many attempts the
       // time-sized batches made.
       std::mt19937_64 shortcut_rng(options_.seed ^ 0x5bd1e995u);
-      result.length = shortcut_path(scene_.space, &local_, &fine,
-                                    certifies_path() ? &certifier_ : nullptr,
-                                    options_.shortcut_rounds,
-                                    options_.shortcut_candidates, &shortcut_rng, &result.path);
+      result.length = shortcut_path(
+          scene_.space, &local_, &fine, certifies_path() ? &certifier_ : nullptr,
+          options_.shortcut_rounds, options_.shortcut_candidates, &shortcut_rng, &result.path);
       report("shortcut", result);
     }
   }
   result.samples_checked = local_.stats().samples + certifier_.stats().checks;
-  result.edge_batches =
-      local_.stats().batches + fine.stats().batches + certifier_.stats().batches;
+  result.edge_batches = local_.stats().batches + fine.stats().batches + certifier_.stats().batches;
   result.times.total = elapsed();
   neighbors_->set_stop(nullptr);
   return result;

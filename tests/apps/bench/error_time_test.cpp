@@ -190,9 +190,9 @@ TEST(GplanBenchErrorTime, RefusesAFolderWithFilesAndOptionsOfOtherKinds) {
   EXPECT_EQ(read_file(folder.path() + "/kept.txt"), "mine\n");
   EXPECT_FALSE(fs::exists(folder.path() + "/results.csv"));
 
-  const CommandResult baseline = run_gplan("bench " + ci_config() + " -o " +
-                                           shell_quoted(folder.path() + "/new") +
-                                           " --baseline " + ci_config());
+  const CommandResult baseline =
+      run_gplan("bench " + ci_config() + " -o " + shell_quoted(folder.path() + "/new") +
+                " --baseline " + ci_config());
   EXPECT_EQ(baseline.exit_code, 2) << baseline.output;
   EXPECT_NE(baseline.output.find("--baseline does not apply to the error-time study"),
             std::string::npos)
@@ -209,8 +209,8 @@ TEST(GplanBenchErrorTime, GpuNamedWhereNoneCanBeUsedLeavesItsCurvesOutWithANotic
                       "edge_resolutions: [1]\ncertified_steps: [0.02]\ntruth_step: 0.002\n"
                       "deltas: [1.0e-5]\nplan_milestones: [100]\nruns: 1\nrepeat: 1\n");
   const std::string out = folder.path() + "/out";
-  const CommandResult run = run_gplan("bench " + config + " -o " + shell_quoted(out) +
-                                      " --no-plots");
+  const CommandResult run =
+      run_gplan("bench " + config + " -o " + shell_quoted(out) + " --no-plots");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("the gpu curves"), std::string::npos) << run.output;
   const std::vector<Row> rows = read_rows(out + "/results.csv");
@@ -228,8 +228,8 @@ TEST(ErrorTimeGpu, TraversalAndPrecisionCurvesRunOnTheGpu) {
                       "edge_resolutions: [8, 1]\ncertified_steps: [0.02]\ntruth_step: 0.002\n"
                       "deltas: [1.0e-5]\nplan_milestones: [100]\nruns: 1\nrepeat: 1\n");
   const std::string out = folder.path() + "/out";
-  const CommandResult run = run_gplan("bench " + config + " -o " + shell_quoted(out) +
-                                      " --no-plots");
+  const CommandResult run =
+      run_gplan("bench " + config + " -o " + shell_quoted(out) + " --no-plots");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::vector<Row> rows = read_rows(out + "/results.csv");
   for (const std::string checker : {"gpu-basic", "gpu-packet", "gpu-balanced"}) {
@@ -311,15 +311,19 @@ TEST(ErrorTimeConfig, ReadsEveryKeyAndRefusesMistakesNamingTheLineAndKey) {
     EXPECT_EQ(c.seed, 6u);
   }
   expect_refused(head, "1: checkers: missing; add it");  // the map's line
-  expect_refused(head + "checkers: [gpu, cuda]\n", "3: checkers[1]: 'cuda' is not one of gpu, cpu, fcl");
+  expect_refused(head + "checkers: [gpu, cuda]\n",
+                 "3: checkers[1]: 'cuda' is not one of gpu, cpu, fcl");
   expect_refused(head + "checkers: [cpu, cpu]\n", "3: checkers[1]: 'cpu' is listed twice");
-  expect_refused(head + "checkers: [cpu]\ndeltas: [2.0e-5]\n", "4: deltas[0]: expected a number above 0");
+  expect_refused(head + "checkers: [cpu]\ndeltas: [2.0e-5]\n",
+                 "4: deltas[0]: expected a number above 0");
   expect_refused(head + "checkers: [cpu]\ncertified_steps: [0.01]\ntruth_step: 0.02\n",
                  "5: truth_step: the ground truth's step 0.02 must be at most the smallest");
-  expect_refused(head + "checkers: [cpu]\nedge_resolutions: []\n", "4: edge_resolutions: expected a list");
+  expect_refused(head + "checkers: [cpu]\nedge_resolutions: []\n",
+                 "4: edge_resolutions: expected a list");
   expect_refused(head + "checkers: [cpu]\nplan_milestones: [100.5]\n",
                  "4: plan_milestones[0]: expected a whole number");
-  expect_refused(head + "checkers: [cpu]\nstates: 0\n", "4: states: expected a whole number from 1");
+  expect_refused(head + "checkers: [cpu]\nstates: 0\n",
+                 "4: states: expected a whole number from 1");
   expect_refused(head + "checkers: [cpu]\ntables: [local-planning]\n",
                  "4: tables: does not apply to kind: error-time");
   expect_refused(head + "checkers: [cpu]\ntolerances: {time_ratio: 2}\n",

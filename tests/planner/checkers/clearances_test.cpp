@@ -33,21 +33,6 @@ bool gpu_missing(std::string* reason) {
   return !device.available;
 }
 
-// A 0.2 m cube as a rigid robot; a wall 2 cm thick across x = 0.
-const char* const kWall = R"(name: wall
-robot:
-  mesh: cube.obj
-obstacles:
-  - box: [0.02, 10, 10]
-bounds:
-  min: [-2, -1.5, -1]
-  max: [2, 1.5, 1]
-start:
-  base: {xyz: [-1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-goal:
-  base: {xyz: [1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-)";
-
 class ClearancesOn : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ClearancesOn, KnownDistancesToAWall) {
@@ -55,7 +40,7 @@ TEST_P(ClearancesOn, KnownDistancesToAWall) {
   if (GetParam() == "gpu" && gpu_missing(&reason)) GTEST_SKIP() << "no GPU: " << reason;
   testing::ScratchFolder folder;
   folder.write("cube.obj", testing::kCubeObj);
-  const Scene scene = load_scene(folder.write("wall.yaml", kWall));
+  const Scene scene = load_scene(folder.write("wall.yaml", testing::kCubeAndThinWallScene));
   const std::unique_ptr<CollisionChecker> checker = make_collision_checker(scene, GetParam());
   ASSERT_EQ(checker->backend(), GetParam());
   ASSERT_EQ(scene.robot.links.size(), 1u);

@@ -19,10 +19,10 @@
 
 #include "gplanner/planner/checkers/cpu_checker.h"
 #include "gplanner/planner/ompl/motion_validator.h"
-#include "gplanner/planner/planning/certified_motions.h"
 #include "gplanner/planner/ompl/roadmap_planners.h"
 #include "gplanner/planner/ompl/state_space.h"
 #include "gplanner/planner/ompl/state_validity_checker.h"
+#include "gplanner/planner/planning/certified_motions.h"
 #include "gplanner/planner/planning/local_planner.h"
 #include "gplanner/planner/planning/scene_metric.h"
 #include "gplanner/planner/scene/scene.h"
@@ -178,8 +178,7 @@ TEST(OmplMotionValidator, AgreesWithOmplsDiscreteMotionValidator) {
 // motion that is not certified has a last valid state up to which it certifies.
 TEST(OmplMotionValidator, CertifiedAnswersAreCertifiedMotions) {
   Fixture f("piano.yaml");
-  const ompl_adapters::MotionValidator validator(f.si, f.scene, &f.checker,
-                                                 EdgeChecks::kCertified);
+  const ompl_adapters::MotionValidator validator(f.si, f.scene, &f.checker, EdgeChecks::kCertified);
   CertifiedMotions certified(f.scene, &f.checker);
   const std::size_t n = 40, w = f.scene.space.width();
   // Motions from valid states (OMPL's validators assume the start valid).

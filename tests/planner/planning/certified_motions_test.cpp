@@ -25,21 +25,6 @@
 namespace gplanner {
 namespace {
 
-// A 0.2 m cube as a rigid robot; a wall 2 cm thick across x = 0.
-const char* const kThinWall = R"(name: thin_wall
-robot:
-  mesh: cube.obj
-obstacles:
-  - box: [0.02, 10, 10]
-bounds:
-  min: [-2, -1.5, -1]
-  max: [2, 1.5, 1]
-start:
-  base: {xyz: [-1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-goal:
-  base: {xyz: [1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-)";
-
 std::vector<float> at(const Scene& scene, double x, double y) {
   std::vector<float> q(scene.space.width(), 0.0f);
   const std::vector<double> values = {x, y, 0, 1, 0, 0, 0};
@@ -55,7 +40,8 @@ class CertifiedMotionsOn : public ::testing::TestWithParam<std::string> {
       if (!device.available) GTEST_SKIP() << "no GPU: " << device.reason;
     }
     folder_.write("cube.obj", testing::kCubeObj);
-    scene_ = std::make_unique<Scene>(load_scene(folder_.write("wall.yaml", kThinWall)));
+    scene_ = std::make_unique<Scene>(
+        load_scene(folder_.write("wall.yaml", testing::kCubeAndThinWallScene)));
     checker_ = make_collision_checker(*scene_, GetParam());
     ASSERT_EQ(checker_->backend(), GetParam());
   }

@@ -42,8 +42,8 @@ class CollisionChecker {
   // clearance that is not a number makes its configuration colliding. What certified
   // motions rest on (planner/planning/certified_motions.h: c_l bounds how far link l's
   // points move, so c_a - c_h bounds how far a's move relative to h).
-  virtual void check_clearances(const float* configurations, std::size_t n,
-                                const float* clearances, std::uint8_t* verdicts) = 0;
+  virtual void check_clearances(const float* configurations, std::size_t n, const float* clearances,
+                                std::uint8_t* verdicts) = 0;
 
   // About how many configurations cost as much to check as one call costs by itself:
   // callers that can check more configurations in fewer calls do so while the extra

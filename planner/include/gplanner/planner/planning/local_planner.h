@@ -26,8 +26,8 @@
 
 #include "gplanner/knn_gpu/configuration_metric.h"
 #include "gplanner/planner/checkers/collision_checker.h"
-#include "gplanner/planner/planning/motion_checker.h"
 #include "gplanner/planner/planning/motion_bound.h"
+#include "gplanner/planner/planning/motion_checker.h"
 #include "gplanner/planner/planning/timed_batch_size.h"
 
 namespace gplanner {

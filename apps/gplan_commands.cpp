@@ -7,6 +7,7 @@
 #include "check_command.h"
 #include "command_line.h"
 #include "gplanner/common/gpu_device.h"
+#include "gplanner/version.h"
 #include "plan_command.h"
 
 namespace gplan {
@@ -54,7 +55,7 @@ const char* const kUsage =
     "      returned path fails the fine FCL re-check; --report DIR summarises an earlier\n"
     "      run's folder again (and draws its plots) instead of running\n"
     "  gplan info\n"
-    "      how gplanner was built and which GPU it can use\n"
+    "      gplanner's version, how it was built and which GPU it can use\n"
     "Output files (--out, --picture, --save-roadmap) are checked before any work: a\n"
     "regular file or a new one in a writable folder, never a folder or device, never a\n"
     "file the run reads or another output; a symbolic link is written through to its\n"
@@ -69,6 +70,7 @@ namespace {
 
 int run_info() {
   const gplanner::GpuDevice device = gplanner::query_gpu_device();
+  std::cout << "gplanner    " << gplanner::version() << "\n";
   std::cout << "CUDA        " << (device.compiled_with_cuda ? "compiled in" : "not compiled in")
             << "\n";
   if (device.available) {

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installs gplanner from BUILD_DIR to a temporary prefix, then configures, builds and
-# runs tests/install/downstream against it with find_package(gplanner) only.
+# Installs gplanner from BUILD_DIR to a temporary prefix; checks the library's versioned
+# SONAME against the version header, runs the installed gplan from its prefix (no
+# library path), then builds and runs tests/install/downstream against the prefix with
+# find_package(gplanner) only, and again with pkg-config's flags only.
 # usage: install_and_use.sh BUILD_DIR SCENE
 set -euo pipefail
 build=$1
@@ -8,10 +10,32 @@ scene=$2
 here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
-test -f "$work/prefix/lib/cmake/gplanner/gplannerConfig.cmake"
-! grep -rl "cuda_runtime\|__global__" "$work/prefix/include" || { echo "CUDA in installed headers"; exit 1; }
-cmake -S "$here/downstream" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" \
+prefix=$work/prefix
+cmake --install "$build" --prefix "$prefix" > "$work/install.log"
+libdir=$(dirname "$(find "$prefix" -name 'libgplanner.so' | head -1)")
+test -f "$libdir/cmake/gplanner/gplannerConfig.cmake"
+! grep -rl "cuda_runtime\|__global__" "$prefix/include" || { echo "CUDA in installed headers"; exit 1; }
+# A versioned SONAME, and the version header.
+soname=$(readelf -d "$libdir/libgplanner.so" | sed -n 's/.*SONAME.*\[\(.*\)\]/\1/p')
+version=$(sed -n 's/#define GPLANNER_VERSION_STRING "\(.*\)"/\1/p' "$prefix/include/gplanner/version.h")
+case $soname in libgplanner.so.[0-9]*.[0-9]*) ;; *) echo "SONAME '$soname' is not versioned"; exit 1;; esac
+test -e "$libdir/$soname" || { echo "no $soname beside libgplanner.so"; exit 1; }
+case $version in "${soname#libgplanner.so.}".*) ;; *) echo "SONAME $soname, version $version"; exit 1;; esac
+# The installed gplan runs from its prefix, no library path set.
+env -u LD_LIBRARY_PATH "$prefix/bin/gplan" info > "$work/gplan_info.log"
+env -u LD_LIBRARY_PATH "$prefix/bin/gplan" plan "$scene" --backend cpu --time-limit 60 \
+  > "$work/gplan_plan.log" || { cat "$work/gplan_plan.log"; echo "the installed gplan failed"; exit 1; }
+# find_package(gplanner).
+cmake -S "$here/downstream" -B "$work/build" -DCMAKE_PREFIX_PATH="$prefix" \
       -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
 cmake --build "$work/build" -j 2 > "$work/build.log"
-LD_LIBRARY_PATH="$work/prefix/lib" "$work/build/downstream" "$scene"
+LD_LIBRARY_PATH="$libdir" "$work/build/downstream" "$scene"
+# pkg-config: the same program built with its flags alone.
+export PKG_CONFIG_PATH="$libdir/pkgconfig"
+libs=$(pkg-config --libs gplanner)
+case " $libs " in *" -lgplanner "*) ;; *) echo "pkg-config --libs gplanner: '$libs'"; exit 1;; esac
+test "$(pkg-config --modversion gplanner)" = "$version"
+# shellcheck disable=SC2046  # the flags are words
+c++ -std=c++17 -O1 "$here/downstream/main.cpp" -o "$work/downstream_pkg_config" \
+    $(pkg-config --cflags gplanner) $libs
+LD_LIBRARY_PATH="$libdir" "$work/downstream_pkg_config" "$scene"

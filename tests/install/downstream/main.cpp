@@ -1,22 +1,30 @@
 // Plans a scene with OMPL's RRTConnect on gplanner's checker and with gplanner's lazy
-// PRM, through the installed headers and library only.
+// PRM, through the installed headers and library only, after checking that the library
+// loaded is the headers' version.
 #include <gplanner/planner/checkers/checker_factory.h>
 #include <gplanner/planner/ompl/motion_validator.h>
 #include <gplanner/planner/ompl/roadmap_planners.h>
 #include <gplanner/planner/ompl/state_space.h>
 #include <gplanner/planner/ompl/state_validity_checker.h>
 #include <gplanner/planner/scene/scene.h>
+#include <gplanner/version.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 
 #include <iostream>
+#include <string>
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
 
 int main(int argc, char** argv) {
   if (argc != 2) return 2;
+  if (std::string(gplanner::version()) != GPLANNER_VERSION_STRING) {
+    std::cerr << "headers of gplanner " << GPLANNER_VERSION_STRING << ", library "
+              << gplanner::version() << "\n";
+    return 1;
+  }
   const gplanner::Scene scene = gplanner::load_scene(argv[1]);
   const auto checker = gplanner::make_collision_checker(scene, "cpu");
   for (const bool ours : {false, true}) {

@@ -38,7 +38,7 @@ class NeighborFinder {
   virtual bool searches_all_points() const { return false; }
   // The cost of one query among n points, in the units of a query among few: 1 for a
   // tree search, n for brute force (callers size their parts by it).
-  virtual double query_cost(std::size_t n) const { return 1; }
+  virtual double query_cost(std::size_t /*n*/) const { return 1; }
   // Forgets every point given so far (a new roadmap follows).
   virtual void reset() {}
   // Polled during long work that is not a search (GNAT's insertions).

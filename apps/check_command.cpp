@@ -131,6 +131,9 @@ int run_check(int argc, char** argv) {
   gplanner::CheckerOptions options;
   options.threads = static_cast<int>(args.count("threads", 0, 0, gplanner::kMaxThreads));
   options.gpu.memory_cap_bytes = args.count("memory-cap-mb", 0, 0, 1ULL << 24) << 20;
+  // gplan check times the GPU's traversal: no call is answered on the host, whatever
+  // its size (the planners' gpu backend routes small calls there).
+  options.gpu.host_calls_up_to = 0;
   if (args.has("small-batch"))
     options.gpu.warp_per_pair_up_to = args.count("small-batch", 0, 0, kMaxRows);
   if (args.has("traversal") &&

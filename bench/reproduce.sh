@@ -7,7 +7,7 @@
 #      cmake -B build -DCMAKE_CUDA_ARCHITECTURES=90 && cmake --build build -j
 #      bench/reproduce.sh --bundle [BUILD_DIR]        (BUILD_DIR: default build)
 #    --bundle packs into .gpu/ the programs the tables use (BUILD_DIR/apps/gplan,
-#    BUILD_DIR/bench/gplanner_{knn_bench,peak_rates,thread_scaling},
+#    BUILD_DIR/bench/gplanner_{knn_bench,call_sizes,peak_rates,thread_scaling},
 #    BUILD_DIR/tests/gplanner_{tests,stability_tests}) with the real PR2 and Talos
 #    data from ../shared/data, and writes the commit to .gpu/commit ("-dirty" when
 #    tracked files differ from it). .gpu/ must travel with the checkout.
@@ -40,6 +40,12 @@
 #                 (issue 21)
 #      error-time-articulated  the same for the humanoid and      error_time_articulated/
 #                 pr2_reach (config/bench/error_time_articulated.yaml)
+#      call-sizes gplanner_call_sizes on every shipped scene: the    call_sizes.md
+#                 gpu backend's routing, the cost of a call of each
+#                 size and of one OMPL checkMotion (issue 22)
+#      ompl-plugin gplan bench config/bench/ompl_plugin.yaml: OMPL's ompl_plugin/
+#                 RRTConnect, PRM and LazyPRM with FCL and through
+#                 the plugin on the gpu and cpu backends (issue 22)
 #    Every call also writes OUT_DIR/machine.txt (GPU, driver, CPU, commit, date,
 #    tables). Progress goes to stderr. The exit status is 1 when a program failed (the
 #    other tables still run). Where one command may run at most 10 minutes, split the
@@ -50,6 +56,7 @@
 #      bench/reproduce.sh OUT_DIR regression
 #      bench/reproduce.sh OUT_DIR error-time
 #      bench/reproduce.sh OUT_DIR error-time-articulated
+#      bench/reproduce.sh OUT_DIR call-sizes ompl-plugin
 #      timeout 590 bench/reproduce.sh OUT_DIR plan   (more than 10 minutes: the runs
 #      done stay in OUT_DIR/plan_times/results.partial.csv)
 # 3. Back on the build machine: copy OUT_DIR to bench/runs/NAME/ and print the tables
@@ -66,7 +73,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 if [ "${1:-}" = --bundle ]; then
   build=${2:-build}
   cd "$root"
-  programs=(apps/gplan bench/gplanner_knn_bench
+  programs=(apps/gplan bench/gplanner_knn_bench bench/gplanner_call_sizes
             bench/gplanner_peak_rates bench/gplanner_thread_scaling tests/gplanner_tests
             tests/gplanner_stability_tests)
   # gpu-bundle takes its options before the programs.
@@ -88,7 +95,7 @@ mkdir -p "$1"
 out=$(cd "$1" && pwd)
 shift
 all=(gpu-tests peak collision agreement knn time-limit hostile seed-tables regression plan
-     error-time error-time-articulated)
+     error-time error-time-articulated call-sizes ompl-plugin)
 tables=("$@")
 [ ${#tables[@]} -gt 0 ] || tables=("${all[@]}")
 for t in "${tables[@]}"; do
@@ -213,6 +220,16 @@ for t in "${tables[@]}"; do
     error-time-articulated)
       bench_config config/bench/error_time_articulated.yaml "$out/error_time_articulated" \
         || failed+=("$t")
+      ;;
+    call-sizes)
+      for scene in scenes/*.yaml; do
+        "$run" "$bin/gplanner_call_sizes" "$scene" || failed+=("$t ($scene)")
+        echo
+      done > "$out/call_sizes.md"
+      ;;
+    ompl-plugin)
+      bench_config config/bench/ompl_plugin.yaml "$out/ompl_plugin" \
+        --jobs $((cores > 5 ? cores - 4 : 1)) || failed+=("$t")
       ;;
   esac
 done

@@ -208,6 +208,7 @@ class SceneStudy {
       for (const char* traversal : {"basic", "packet", "balanced"}) {
         gplanner::CheckerOptions options;
         gplanner::parse_traversal(traversal, &options.gpu.traversal);
+        options.gpu.host_calls_up_to = 0;  // the traversal's own price, at every size
         std::string why;
         const auto gpu = make_checker(scene_, "gpu", options, &why);
         if (!gpu) continue;  // cannot happen: the gpu ran above

@@ -130,6 +130,7 @@ TableChecker make_table_checker(const gplanner::Scene& scene, const std::string&
     backend = "gpu";
     if (!gplanner::parse_traversal(name.substr(gpu_prefix.size()), &options.gpu.traversal))
       throw std::logic_error("query table checker '" + name + "' names no traversal");
+    options.gpu.host_calls_up_to = 0;  // the traversal named, at every call size
   }
   TableChecker made;
   made.checker = gplanner::make_collision_checker(scene, backend, options, &made.note);

@@ -1,5 +1,6 @@
 #include "gplanner/collision_gpu/cpu_batch_checker.h"
 
+#include <algorithm>
 #include <atomic>
 #include <mutex>
 
@@ -27,13 +28,18 @@ CpuBatchChecker::~CpuBatchChecker() = default;
 
 void CpuBatchChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts,
                             const float* clearances) {
+  check(configurations, n, verdicts, clearances, impl_->threads);
+}
+
+void CpuBatchChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts,
+                            const float* clearances, int threads) {
   Impl& impl = *impl_;
   CollisionModelView view = impl.view;
   view.clearances = clearances;
   // This call's counts (calls from other threads run at once), published when it ends.
   std::atomic<unsigned long long> bv_tests{0}, triangle_tests{0};
   const std::size_t width = view.width;
-  parallel_for(n, impl.threads, [&](std::size_t begin, std::size_t end, int) {
+  parallel_for(n, std::max(1, std::min(threads, impl.threads)), [&](std::size_t begin, std::size_t end, int) {
     detail::Xf X_WL[detail::kMaxLinks];
     // Counted on this thread's stack, added to the call's totals once per chunk: counting
     // in shared totals in every test made the threads wait on each other's writes.

@@ -57,6 +57,15 @@ struct GpuBatchChecker::Impl {
   traversals::PacketTraversal packet;
   std::optional<traversals::BalancedTraversal> balanced;
 
+  // Small batches: page-locked staging, so that every copy is queued with the kernels and
+  // a call waits for the device once (kPinnedQueries rows at most).
+  static constexpr std::size_t kPinnedQueries = 1024;
+  cuda::PinnedBuffer<float> pinned_configurations, pinned_clearances;
+  cuda::PinnedBuffer<std::uint8_t> pinned_verdicts;
+  cuda::PinnedBuffer<traversals::DeviceTestCounts> pinned_counts;
+  cuda::PinnedBuffer<traversals::BalancedState> pinned_state;
+  cudaEvent_t start_event = nullptr, stop_event = nullptr;
+
   Impl(const CollisionModel& model, const GpuCheckerOptions& o) : options(o), host(model) {
     int count = 0;
     check_cuda(cudaGetDeviceCount(&count), "no usable GPU");
@@ -95,6 +104,78 @@ struct GpuBatchChecker::Impl {
     view.solids = {components.get(), component_tree.get(), solid_nodes.get(),
                    solid_triangles.get()};
     balanced.emplace(host, properties);
+    pinned_configurations.reserve(kPinnedQueries * view.width);
+    pinned_clearances.reserve(kPinnedQueries * std::max(1, view.link_count));
+    pinned_verdicts.reserve(kPinnedQueries);
+    pinned_counts.reserve(1);
+    pinned_state.reserve(1);
+    check_cuda(cudaEventCreate(&start_event), "event");
+    check_cuda(cudaEventCreate(&stop_event), "event");
+  }
+
+  ~Impl() {
+    if (start_event) cudaEventDestroy(start_event);
+    if (stop_event) cudaEventDestroy(stop_event);
+  }
+
+  // Whether a batch of n goes the one-wait way: one kernel launch sequence, no rounds.
+  bool is_small(std::size_t n) const {
+    if (n > kPinnedQueries) return false;
+    if (options.traversal == Traversal::kBasic) return true;
+    return options.traversal == Traversal::kBalanced &&
+           n <= balanced->small_batch_up_to(options.warp_per_pair_up_to);
+  }
+
+  // A small batch: staged in page-locked memory, uploads, kernels and downloads queued on
+  // the default stream, one wait at the end. False when the balanced traversal's jobs
+  // overflowed (check() then runs the batch the usual way).
+  bool check_small(const float* h_q, std::size_t n, std::uint8_t* h_verdicts,
+                   const float* h_clearances) {
+    const std::size_t width = view.width;
+    const std::size_t links = static_cast<std::size_t>(view.link_count);
+    CollisionModelView call_view = view;
+    std::copy(h_q, h_q + n * width, pinned_configurations.get());
+    configurations.reserve(std::max(n, kPinnedQueries) * width);
+    verdicts.reserve(std::max(n, kPinnedQueries));
+    if (options.traversal == Traversal::kBalanced) balanced->reserve(kPinnedQueries, memory_cap);
+    check_cuda(cudaEventRecord(start_event), "event");
+    check_cuda(cudaMemcpyAsync(configurations.get(), pinned_configurations.get(),
+                               n * width * sizeof(float), cudaMemcpyHostToDevice),
+               "upload configurations");
+    if (h_clearances) {
+      std::copy(h_clearances, h_clearances + n * links, pinned_clearances.get());
+      clearances.reserve(kPinnedQueries * links);
+      check_cuda(cudaMemcpyAsync(clearances.get(), pinned_clearances.get(),
+                                 n * links * sizeof(float), cudaMemcpyHostToDevice),
+                 "upload clearances");
+      call_view.clearances = clearances.get();
+    }
+    check_cuda(cudaMemsetAsync(counts.get(), 0, sizeof(traversals::DeviceTestCounts)), "memset");
+    const int m = static_cast<int>(n);
+    if (options.traversal == Traversal::kBasic) {
+      traversals::run_basic(call_view, configurations.get(), m, verdicts.get(), counts.get());
+    } else {
+      balanced->enqueue_small(call_view, configurations.get(), m, verdicts.get(), counts.get(),
+                              pinned_state.get());
+    }
+    check_cuda(cudaMemcpyAsync(pinned_verdicts.get(), verdicts.get(), n, cudaMemcpyDeviceToHost),
+               "download verdicts");
+    check_cuda(cudaMemcpyAsync(pinned_counts.get(), counts.get(),
+                               sizeof(traversals::DeviceTestCounts), cudaMemcpyDeviceToHost),
+               "read counters");
+    check_cuda(cudaEventRecord(stop_event), "event");
+    check_cuda(cudaEventSynchronize(stop_event), "wait for the small batch");
+    if (options.traversal == Traversal::kBalanced &&
+        !balanced->finish_small(*pinned_state.get(), &stats))
+      return false;
+    std::copy(pinned_verdicts.get(), pinned_verdicts.get() + n, h_verdicts);
+    float ms = 0;
+    check_cuda(cudaEventElapsedTime(&ms, start_event, stop_event), "event");
+    stats.milliseconds = ms;
+    stats.chunks = 1;
+    stats.bv_tests = pinned_counts.get()->bv_tests;
+    stats.triangle_tests = pinned_counts.get()->triangle_tests;
+    return true;
   }
 
   // Queries per chunk under the memory cap, for `bytes_per_query` of chunk-sized buffers.
@@ -106,6 +187,10 @@ struct GpuBatchChecker::Impl {
   void check(const float* h_q, std::size_t n, std::uint8_t* h_verdicts, const float* h_clearances) {
     stats = {};
     if (n == 0) return;
+    if (is_small(n)) {
+      if (check_small(h_q, n, h_verdicts, h_clearances)) return;
+      stats = {};
+    }
     CollisionModelView call_view = view;
     const bool is_balanced = options.traversal == Traversal::kBalanced;
     const std::size_t width = view.width;
@@ -122,9 +207,7 @@ struct GpuBatchChecker::Impl {
     verdicts.reserve(chunk);
     check_cuda(cudaMemset(counts.get(), 0, sizeof(traversals::DeviceTestCounts)), "memset");
 
-    cudaEvent_t start, stop;
-    check_cuda(cudaEventCreate(&start), "event");
-    check_cuda(cudaEventCreate(&stop), "event");
+    cudaEvent_t start = start_event, stop = stop_event;
     check_cuda(cudaEventRecord(start), "event");
     std::size_t done = 0;
     while (done < n) {
@@ -158,8 +241,6 @@ struct GpuBatchChecker::Impl {
     check_cuda(cudaEventSynchronize(stop), "event");
     float ms = 0;
     check_cuda(cudaEventElapsedTime(&ms, start, stop), "event");
-    cudaEventDestroy(start);
-    cudaEventDestroy(stop);
     traversals::DeviceTestCounts c;
     check_cuda(cudaMemcpy(&c, counts.get(), sizeof(c), cudaMemcpyDeviceToHost), "read counters");
     stats.milliseconds = ms;

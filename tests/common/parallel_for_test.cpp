@@ -1,10 +1,12 @@
-// Host thread loops: every index once, thread indices each on one thread at a time, and
+// Host thread loops: every index once, thread indices each on one thread at a time,
 // calls from many threads at once (and from inside a loop) sharing the helper threads
-// instead of each starting its own.
+// instead of each starting its own, helpers kept between calls, and fork().
 
 #include "gplanner/common/parallel_for.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -128,6 +130,54 @@ TEST(ParallelFor, ThreadsThatFailToStartLeaveTheWholeLoopToThoseThatDid) {
   });
   EXPECT_EQ(code, 0) << "0: every item once; 1: items missed or repeated; 2: threw; 134: "
                         "terminated";
+}
+
+// Helpers are started once and kept: many calls run on the same few threads, where
+// starting threads per call made new ones every time (thread_local flags count each
+// thread that ever ran a chunk once).
+TEST(ParallelFor, CallsReuseTheSameHelperThreads) {
+  static std::atomic<int> threads_seen{0};
+  const auto mark = [](std::size_t, std::size_t, int) {
+    thread_local bool counted = false;
+    if (!counted) {
+      counted = true;
+      ++threads_seen;
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(50));
+  };
+  for (int call = 0; call < 300; ++call) parallel_for(64, 4, mark, 1);
+  // This thread and the helpers of the process (started by this test or by earlier ones
+  // that asked for more threads): threads started per call would number up to 900.
+  EXPECT_LE(threads_seen, 64);
+  EXPECT_GE(threads_seen, 1);
+}
+
+// fork() leaves the child none of the helper threads (gplan bench forks its workers):
+// the child's loops still run every index once, on helpers of its own.
+TEST(ParallelFor, AForkedChildRunsLoopsOnHelpersOfItsOwn) {
+  parallel_for(1000, 4, [](std::size_t, std::size_t, int) {}, 1);  // helpers exist
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::atomic<std::size_t> sum{0};
+    std::atomic<int> top_thread{0};
+    parallel_for(
+        100000, 4,
+        [&](std::size_t begin, std::size_t end, int thread) {
+          for (std::size_t i = begin; i < end; ++i) sum += i;
+          for (int t = top_thread; thread > t && !top_thread.compare_exchange_weak(t, thread);) {
+          }
+          std::this_thread::sleep_for(std::chrono::microseconds(20));
+        },
+        64);
+    const bool every_index_once = sum == std::size_t(100000) * 99999 / 2;
+    const bool helped = resolve_thread_count(0) == 1 || top_thread > 0;
+    _exit(every_index_once ? (helped ? 0 : 2) : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: indices missed or repeated; 2: no helper ran";
 }
 
 TEST(ParallelFor, ThreadCountsAreCappedAtTheStatedMaximum) {

@@ -70,6 +70,7 @@ std::unique_ptr<CollisionChecker> checker_for(const Scene& scene, const std::str
                                               Traversal traversal = Traversal::kBalanced) {
   CheckerOptions options;
   options.gpu.traversal = traversal;
+  options.gpu.host_calls_up_to = 0;  // every traversal really runs, whatever the batch
   auto checker = make_collision_checker(scene, backend, options);
   EXPECT_EQ(checker->backend(), backend) << "the backend asked for did not run";
   return checker;
@@ -459,6 +460,7 @@ TEST(StabilityHostileInput, GpuBatchesOverATinyMemoryCapAnswerAsTheCpu) {
       GpuCheckerOptions options;
       options.traversal = t;
       options.memory_cap_bytes = std::size_t(1) << 20;  // gplan check --memory-cap-mb 1
+      options.host_calls_up_to = 0;
       GpuChecker gpu(scene, options);
       std::vector<std::uint8_t> got(n, 2);
       gpu.check(q.data(), n, got.data());

@@ -547,11 +547,8 @@ BalancedState BalancedTraversal::read_state() {
   return c;
 }
 
-bool BalancedTraversal::run(const CollisionModelView& m, const float* d_q, int n,
-                            std::uint8_t* d_verdicts, DeviceTestCounts* d_counts,
-                            std::size_t warp_per_pair_up_to, GpuCheckStats* stats) {
-  check_cuda(cudaMemsetAsync(state_.get(), 0, sizeof(BalancedState)), "memset");
-  check_cuda(cudaMemset(d_verdicts, 0, n), "memset");
+void BalancedTraversal::launch_roots(const CollisionModelView& m, const float* d_q, int n,
+                                     std::uint8_t* d_verdicts, GpuCheckStats* stats) {
   const bool warp_roots = many_bodies_ && static_cast<std::size_t>(n) <= kWarpRootsUpTo;
   if (warp_roots) {
     balanced_roots_warp_kernel<<<blocks_for(n, kRootWarps), 32 * kRootWarps>>>(
@@ -564,11 +561,45 @@ bool BalancedTraversal::run(const CollisionModelView& m, const float* d_q, int n
   }
   check_cuda(cudaGetLastError(), "balanced roots kernel");
   stats->root_lanes = warp_roots ? 32 : 1;
-  const std::size_t small_batch = warp_per_pair_up_to != GpuCheckerOptions::kAuto
-                                      ? warp_per_pair_up_to
-                                  : many_bodies_ ? 1024
-                                                 : 10;
-  if (static_cast<std::size_t>(n) <= small_batch) {
+}
+
+std::size_t BalancedTraversal::small_batch_up_to(std::size_t warp_per_pair_up_to) const {
+  return warp_per_pair_up_to != GpuCheckerOptions::kAuto ? warp_per_pair_up_to
+         : many_bodies_                                   ? 1024
+                                                          : 10;
+}
+
+void BalancedTraversal::enqueue_small(const CollisionModelView& m, const float* d_q, int n,
+                                      std::uint8_t* d_verdicts, DeviceTestCounts* d_counts,
+                                      BalancedState* h_state) {
+  check_cuda(cudaMemsetAsync(state_.get(), 0, sizeof(BalancedState)), "memset");
+  check_cuda(cudaMemsetAsync(d_verdicts, 0, n), "memset");
+  GpuCheckStats unused;
+  launch_roots(m, d_q, n, d_verdicts, &unused);
+  balanced_warp_per_pair_kernel<false><<<pair_blocks_, 32 * pair_warps_, pair_shared_bytes_>>>(
+      m, jobs_.get(), nullptr, pair_stack_capacity_, d_verdicts, state_.get(), d_counts);
+  check_cuda(cudaGetLastError(), "balanced small-batch kernel");
+  // Containment reads the verdicts; after an overflow they are thrown away anyway.
+  run_containment(m, d_q, n, d_verdicts);
+  check_cuda(cudaMemcpyAsync(h_state, state_.get(), sizeof(BalancedState), cudaMemcpyDeviceToHost),
+             "read counters");
+}
+
+bool BalancedTraversal::finish_small(const BalancedState& h_state, GpuCheckStats* stats) const {
+  if (h_state.jobs_overflow) return false;
+  stats->root_lanes = many_bodies_ ? 32 : 1;
+  stats->warp_per_pair = true;
+  stats->jobs += h_state.jobs;
+  return true;
+}
+
+bool BalancedTraversal::run(const CollisionModelView& m, const float* d_q, int n,
+                            std::uint8_t* d_verdicts, DeviceTestCounts* d_counts,
+                            std::size_t warp_per_pair_up_to, GpuCheckStats* stats) {
+  check_cuda(cudaMemsetAsync(state_.get(), 0, sizeof(BalancedState)), "memset");
+  check_cuda(cudaMemset(d_verdicts, 0, n), "memset");
+  launch_roots(m, d_q, n, d_verdicts, stats);
+  if (static_cast<std::size_t>(n) <= small_batch_up_to(warp_per_pair_up_to)) {
     balanced_warp_per_pair_kernel<false><<<pair_blocks_, 32 * pair_warps_, pair_shared_bytes_>>>(
         m, jobs_.get(), nullptr, pair_stack_capacity_, d_verdicts, state_.get(), d_counts);
     check_cuda(cudaGetLastError(), "balanced small-batch kernel");

@@ -17,7 +17,7 @@ std::unique_ptr<CollisionChecker> make_collision_checker(const Scene& scene,
                                                          std::string* notice) {
   if (backend == "gpu") {
     const GpuDevice device = query_gpu_device();
-    if (device.available) return std::make_unique<GpuChecker>(scene, options.gpu);
+    if (device.available) return std::make_unique<GpuChecker>(scene, options.gpu, options.threads);
     if (notice) *notice = "no GPU (" + device.reason + "): the cpu backend runs instead";
     return std::make_unique<CpuChecker>(scene, options.threads);
   }

@@ -1,19 +1,121 @@
 #include "gplanner/planner/checkers/gpu_checker.h"
 
+#include <algorithm>
+#include <chrono>
+#include <random>
+
+#include "gplanner/common/parallel_for.h"
 #include "gplanner/planner/scene/scene_collision_model.h"
 
 namespace gplanner {
+namespace {
 
-GpuChecker::GpuChecker(const Scene& scene, const GpuCheckerOptions& options)
-    : traversal_(options.traversal), checker_(build_collision_model(scene), options) {}
+// The fastest of `repeats` runs of f, in seconds: a call's cost without the noise of
+// other work on the machine.
+template <typename F>
+double fastest_seconds(int repeats, F&& f) {
+  double best = 1e30;
+  for (int r = 0; r < repeats; ++r) {
+    const auto started = std::chrono::steady_clock::now();
+    f();
+    best = std::min(
+        best, std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+  }
+  return best;
+}
+
+// seconds[i] measured at sizes[i] (increasing), read at n: linear between the two
+// measured sizes around n, the nearest measurement's per-configuration cost beyond them.
+double interpolate(const std::vector<std::size_t>& sizes, const std::vector<double>& seconds,
+                   std::size_t n) {
+  if (n <= sizes.front()) return seconds.front();
+  for (std::size_t i = 1; i < sizes.size(); ++i) {
+    if (n <= sizes[i]) {
+      const double t = double(n - sizes[i - 1]) / double(sizes[i] - sizes[i - 1]);
+      return seconds[i - 1] + t * (seconds[i] - seconds[i - 1]);
+    }
+  }
+  return seconds.back() * double(n) / double(sizes.back());
+}
+
+}  // namespace
+
+GpuChecker::GpuChecker(const Scene& scene, const GpuCheckerOptions& options, int host_threads)
+    : GpuChecker(build_collision_model(scene), scene, options, host_threads) {}
+
+GpuChecker::GpuChecker(const CollisionModel& model, const Scene& scene,
+                       const GpuCheckerOptions& options, int host_threads)
+    : traversal_(options.traversal),
+      gpu_(model, options),
+      host_(model, host_threads),
+      host_threads_(resolve_thread_count(host_threads)) {
+  if (options.host_calls_up_to == GpuCheckerOptions::kAuto) {
+    measure_routing(scene);
+  } else {
+    // Up to the given size on the host: the thread pool's loops run calls of up to a
+    // chunk (16 configurations) on the calling thread alone.
+    routing_.calling_thread_up_to = std::min<std::size_t>(options.host_calls_up_to, 16);
+    routing_.host_threads_up_to = options.host_calls_up_to;
+  }
+}
+
+GpuChecker::~GpuChecker() = default;
+
+void GpuChecker::measure_routing(const Scene& scene) {
+  // The scene's uniform samples stand for the planner's states: a mix of free and
+  // colliding ones, as milestones and motion samples are.
+  const std::size_t width = scene.space.width();
+  const std::vector<std::size_t> sizes = {1, 8, 64, 512, 4096};
+  const std::size_t most = sizes.back();
+  std::vector<float> q(most * width);
+  std::mt19937_64 rng(1);
+  for (std::size_t i = 0; i < most; ++i) scene.space.sample_uniform(&rng, &q[i * width]);
+  std::vector<std::uint8_t> verdicts(most);
+  HostCallRouting& r = routing_;
+  r.measured = true;
+  r.sizes = sizes;
+  gpu_.check(q.data(), most, verdicts.data());  // warm-up: first launches, caches
+  // One host thread: 128 states, the fastest of three passes.
+  const std::size_t host_sample = 128;
+  r.host_seconds_per_configuration =
+      fastest_seconds(3, [&] { host_.check(q.data(), host_sample, verdicts.data(), nullptr, 1); }) /
+      host_sample;
+  for (const std::size_t n : sizes) {
+    r.gpu_seconds.push_back(fastest_seconds(3, [&] { gpu_.check(q.data(), n, verdicts.data()); }));
+    r.host_threads_seconds.push_back(
+        fastest_seconds(3, [&] { host_.check(q.data(), n, verdicts.data(), nullptr, host_threads_); }));
+  }
+  // The calling thread while it beats both, then the thread pool while it beats the GPU
+  // (each from the smallest call up, at powers of two).
+  const auto one_thread = [&](std::size_t n) { return r.host_seconds_per_configuration * n; };
+  const auto pool = [&](std::size_t n) { return interpolate(sizes, r.host_threads_seconds, n); };
+  const auto gpu = [&](std::size_t n) { return interpolate(sizes, r.gpu_seconds, n); };
+  std::size_t n = 1;
+  for (; n <= (std::size_t(1) << 20) && one_thread(n) <= std::min(pool(n), gpu(n)); n *= 2)
+    r.calling_thread_up_to = n;
+  r.host_threads_up_to = r.calling_thread_up_to;
+  for (; n <= (std::size_t(1) << 20) && std::min(one_thread(n), pool(n)) <= gpu(n); n *= 2)
+    r.host_threads_up_to = n;
+}
+
+void GpuChecker::route(const float* configurations, std::size_t n, const float* clearances,
+                       std::uint8_t* verdicts) {
+  if (n <= routing_.calling_thread_up_to) {
+    host_.check(configurations, n, verdicts, clearances, 1);
+  } else if (n <= routing_.host_threads_up_to) {
+    host_.check(configurations, n, verdicts, clearances, host_threads_);
+  } else {
+    gpu_.check(configurations, n, verdicts, clearances);
+  }
+}
 
 void GpuChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts) {
-  checker_.check(configurations, n, verdicts);
+  route(configurations, n, nullptr, verdicts);
 }
 
 void GpuChecker::check_clearances(const float* configurations, std::size_t n,
                                   const float* clearances, std::uint8_t* verdicts) {
-  checker_.check(configurations, n, verdicts, clearances);
+  route(configurations, n, clearances, verdicts);
 }
 
 }  // namespace gplanner

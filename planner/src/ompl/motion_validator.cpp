@@ -37,8 +37,29 @@ bool MotionValidator::certified_free(const float* a, const float* b) const {
 }
 
 bool MotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const {
-  std::pair<ompl::base::State*, double> unused{nullptr, 0.0};
-  return checkMotion(s1, s2, unused);
+  // As OMPL's DiscreteMotionValidator: the end state first, then the samples between,
+  // coarse to fine, up to the first collision (on the calling thread where the checker
+  // answers small calls there).
+  if (!si_->satisfiesBounds(s2)) {
+    count(0, 1);
+    return false;
+  }
+  const int width = scene_.space.width();
+  thread_local std::vector<float> a, b;
+  a.resize(width);
+  b.resize(width);
+  state_to_row(scene_, s1, a.data());
+  state_to_row(scene_, s2, b.data());
+  bool valid = false;
+  if (edges_ == EdgeChecks::kCertified) {
+    valid = certified_free(a.data(), b.data());
+  } else {
+    std::uint8_t end = 1, between = 1;
+    checker_->check(b.data(), 1, &end);
+    valid = end == 0 && local_.check_motions(a.data(), b.data(), 1, &between) && between == 0;
+  }
+  count(valid ? 1 : 0, valid ? 0 : 1);
+  return valid;
 }
 
 bool MotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,

@@ -13,7 +13,8 @@ StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr
 
 bool StateValidityChecker::isValid(const ompl::base::State* state) const {
   if (!si_->satisfiesBounds(state)) return false;
-  std::vector<float> row(scene_.space.width());
+  thread_local std::vector<float> row;  // no allocation per call: calls take microseconds
+  row.resize(scene_.space.width());
   state_to_row(scene_, state, row.data());
   std::uint8_t verdict = 1;
   checker_->check(row.data(), 1, &verdict);

@@ -130,8 +130,15 @@ bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t
   const std::size_t call_cost = checker_->configurations_per_call_cost();
   bool probe = call_cost > 0 && count > 0 && remaining > 2 * call_cost;
   if (probe) per_motion = std::max<std::size_t>(1, call_cost / count);
+  // Levels small enough to be answered on the calling thread (a single motion from an
+  // OMPL planner, on any backend) cost no more one level at a time than all at once, and
+  // a collision found at a coarse level spares the finer ones: as OMPL's
+  // DiscreteMotionValidator, which stops at the first colliding sample.
+  const std::size_t cheap_calls_up_to = checker_->cheap_calls_up_to();
+  std::size_t live = count;  // motions not found invalid, with samples left
   while (remaining > 0) {
-    const bool all_at_once = !probe && remaining <= options_.one_batch_samples;
+    const bool stepwise = live <= cheap_calls_up_to / per_motion;
+    const bool all_at_once = !probe && !stepwise && remaining <= options_.one_batch_samples;
     probe = false;
     std::vector<std::pair<std::uint32_t, int>> picks;  // (motion, sample index)
     for (std::size_t e = 0; e < count; ++e) {
@@ -169,9 +176,12 @@ bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t
       for (std::size_t i = 0; i < n; ++i)
         if (verdicts[i]) invalid[picks[first + i].first] = 1;
     }
-    remaining = 0;
-    for (std::size_t e = 0; e < count; ++e)
-      if (!invalid[e]) remaining += order[e]->size() - next[e];
+    remaining = live = 0;
+    for (std::size_t e = 0; e < count; ++e) {
+      if (invalid[e] || next[e] == order[e]->size()) continue;
+      remaining += order[e]->size() - next[e];
+      ++live;
+    }
     per_motion *= 2;
   }
   return true;
@@ -181,14 +191,32 @@ double LocalPlanner::last_valid_fraction(const float* a, const float* b) {
   const ConfigurationSpace& space = scene_.space;
   const std::size_t width = space.width();
   const int n = segments(a, b);
-  std::vector<float> samples(static_cast<std::size_t>(n) * width);
-  for (int j = 1; j <= n; ++j)
-    space.interpolate(a, b, static_cast<double>(j) / n, &samples[(j - 1) * width]);
-  std::vector<std::uint8_t> verdicts(n);
-  checker_->check(samples.data(), n, verdicts.data());
-  add_stats(1, n, 1);
-  for (int j = 1; j <= n; ++j)
-    if (verdicts[j - 1]) return static_cast<double>(j - 1) / n;
+  // In order from a; where small calls are answered on the calling thread, a few samples
+  // a call (1, 2, 4, ...) up to the first collision, else all in one call.
+  const std::size_t cheap_calls_up_to = checker_->cheap_calls_up_to();
+  std::size_t chunk = cheap_calls_up_to > 0 ? 1 : static_cast<std::size_t>(n);
+  std::vector<float> samples;
+  std::vector<std::uint8_t> verdicts;
+  std::size_t batches = 0;
+  for (int first = 1; first <= n;) {
+    const int last = static_cast<int>(std::min<std::size_t>(n, first - 1 + chunk));
+    const std::size_t m = static_cast<std::size_t>(last - first + 1);
+    samples.resize(m * width);
+    for (int j = first; j <= last; ++j)
+      space.interpolate(a, b, static_cast<double>(j) / n, &samples[(j - first) * width]);
+    verdicts.assign(m, 0);
+    checker_->check(samples.data(), m, verdicts.data());
+    ++batches;
+    for (int j = first; j <= last; ++j) {
+      if (verdicts[j - first]) {
+        add_stats(1, static_cast<std::size_t>(last), batches);
+        return static_cast<double>(j - 1) / n;
+      }
+    }
+    first = last + 1;
+    chunk = std::max<std::size_t>(1, std::min(2 * chunk, cheap_calls_up_to));
+  }
+  add_stats(1, n, batches);
   return 1.0;
 }
 

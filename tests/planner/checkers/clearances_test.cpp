@@ -148,6 +148,7 @@ TEST_P(ClearancesAgreeWithFcl, OnEveryGpuTraversal) {
       CheckerOptions options;
       options.gpu.traversal = t;
       options.gpu.warp_per_pair_up_to = small_batch ? batch.n : 0;
+      options.gpu.host_calls_up_to = 0;
       const std::unique_ptr<CollisionChecker> gpu = make_collision_checker(scene, "gpu", options);
       ASSERT_EQ(gpu->backend(), "gpu");
       std::vector<std::uint8_t> on_gpu(batch.n);

@@ -10,6 +10,7 @@
 #include "gplanner/planner/checkers/checker_comparison.h"
 #include "gplanner/planner/checkers/checker_factory.h"
 #include "gplanner/planner/checkers/cpu_checker.h"
+#include "gplanner/planner/checkers/fcl_checker.h"
 #include "gplanner/planner/scene/scene_collision_model.h"
 #include "planner/scene_test_support.h"
 #include "test_support.h"
@@ -35,6 +36,14 @@ std::string case_name(const Case& c) {
 
 void PrintTo(const Case& c, std::ostream* out) { *out << c.scene << " " << case_name(c); }
 
+// The kernels under test: no call answered on the host.
+GpuCheckerOptions gpu_only() {
+  GpuCheckerOptions options;
+  options.host_calls_up_to = 0;
+  return options;
+}
+const GpuCheckerOptions kGpuOnly = gpu_only();
+
 class GpuMatchesCpu : public ::testing::TestWithParam<Case> {};
 
 TEST_P(GpuMatchesCpu, OnASeededBatch) {
@@ -45,6 +54,7 @@ TEST_P(GpuMatchesCpu, OnASeededBatch) {
   CheckerOptions options;
   options.gpu.traversal = GetParam().traversal;
   options.gpu.warp_per_pair_up_to = GetParam().small_batch ? n : 0;
+  options.gpu.host_calls_up_to = 0;  // the kernels under test
   std::string notice;
   const std::unique_ptr<CollisionChecker> checker =
       make_collision_checker(scene, "gpu", options, &notice);
@@ -106,6 +116,7 @@ TEST(GpuChecker, ChunksBatchesOverTheMemoryCap) {
     whole.traversal = capped.traversal = c.traversal;
     whole.warp_per_pair_up_to = capped.warp_per_pair_up_to = c.small_batch ? n : 0;
     capped.memory_cap_bytes = 256 * 1024;
+    whole.host_calls_up_to = capped.host_calls_up_to = 0;
     GpuChecker a(scene, whole), b(scene, capped);
     std::vector<std::uint8_t> va(n), vb(n);
     a.check(q.data(), n, va.data());
@@ -136,7 +147,7 @@ TEST(GpuChecker, ChoosesItsKernelsByRobotAndBatchSize) {
         Expect{"piano.yaml", 32, 1, false}}) {
     const Scene scene = load_scene(testing::project_root() + "/scenes/" + e.scene);
     const std::vector<float> q = testing::sample_configurations(scene, e.n, 31);
-    GpuChecker gpu(scene, {});
+    GpuChecker gpu(scene, kGpuOnly);
     std::vector<std::uint8_t> verdicts(e.n);
     gpu.check(q.data(), e.n, verdicts.data());
     EXPECT_EQ(gpu.last_stats().root_lanes, e.root_lanes) << e.scene << " " << e.n;
@@ -147,10 +158,60 @@ TEST(GpuChecker, ChoosesItsKernelsByRobotAndBatchSize) {
   }
 }
 
+// Calls of every size: the gpu backend as made by default answers small calls on the
+// host, by crossovers it measured on the scene, and every size agrees with the same core
+// on the host (the cpu backend, exactly, where the host answered) and with FCL up to the
+// band; the GPU's small batches (one wait, page-locked staging) agree too.
+TEST(GpuChecker, RoutesCallsOfEverySizeByMeasuredCrossovers) {
+  REQUIRE_GPU();
+  for (const char* name : {"piano.yaml", "pr2_base_arm.yaml"}) {
+    const Scene scene = load_scene(testing::project_root() + "/scenes/" + name);
+    GpuChecker routed(scene, GpuCheckerOptions{});
+    GpuChecker gpu_only(scene, kGpuOnly);
+    const HostCallRouting& r = routed.routing();
+    ASSERT_TRUE(r.measured) << name;
+    ASSERT_EQ(r.sizes.size(), r.gpu_seconds.size()) << name;
+    EXPECT_GT(r.host_seconds_per_configuration, 0.0) << name;
+    for (const double t : r.gpu_seconds) EXPECT_GT(t, 0.0) << name;
+    EXPECT_LE(r.calling_thread_up_to, r.host_threads_up_to) << name;
+    // The first decision as the measurements say: one state on the calling thread when
+    // that beat a GPU call of one state.
+    EXPECT_EQ(r.calling_thread_up_to > 0,
+              r.host_seconds_per_configuration <=
+                  std::min(r.gpu_seconds.front(), r.host_threads_seconds.front()))
+        << name;
+    std::cout << name << ": calling thread up to " << r.calling_thread_up_to
+              << ", host threads up to " << r.host_threads_up_to << "; one state "
+              << r.host_seconds_per_configuration * 1e6 << " us on the host, "
+              << r.gpu_seconds.front() * 1e6 << " us on the GPU\n";
+    const std::size_t most = 4096, width = scene.space.width();
+    const std::vector<float> q = testing::sample_configurations(scene, most, 37);
+    CpuChecker cpu(scene);
+    FclChecker fcl(scene);
+    std::vector<std::uint8_t> on_cpu(most);
+    cpu.check(q.data(), most, on_cpu.data());
+    for (std::size_t n = 1; n <= most; n *= 2) {
+      std::vector<std::uint8_t> a(n), b(n);
+      routed.check(q.data(), n, a.data());
+      gpu_only.check(q.data(), n, b.data());
+      EXPECT_GT(gpu_only.last_stats().milliseconds, 0.0) << name << " " << n;
+      const std::vector<std::uint8_t> cpu_part(on_cpu.begin(), on_cpu.begin() + n);
+      if (n <= r.host_threads_up_to) EXPECT_EQ(a, cpu_part) << name << " " << n;
+      for (const std::vector<std::uint8_t>* v : {&a, &b}) {
+        const CheckerComparison c =
+            compare_verdicts(q.data(), n, width, v->data(), cpu_part.data(), &fcl,
+                             tolerance_delta(scene));
+        EXPECT_EQ(c.missed_collisions, 0u) << name << " " << n;
+        EXPECT_EQ(c.extra_outside_band, 0u) << name << " " << n;
+      }
+    }
+  }
+}
+
 TEST(GpuChecker, AnswersAnEmptyBatch) {
   REQUIRE_GPU();
   const Scene scene = load_scene(testing::project_root() + "/scenes/helicopter.yaml");
-  GpuChecker gpu(scene, {});
+  GpuChecker gpu(scene, kGpuOnly);
   gpu.check(nullptr, 0, nullptr);
   EXPECT_EQ(gpu.last_stats().chunks, 0u);
 }

@@ -464,6 +464,7 @@ TEST(SolidsGpu, KnownAnswersOnEveryTraversal) {
         GpuCheckerOptions options;
         options.traversal = t;
         options.warp_per_pair_up_to = small ? k.count() : 0;
+        options.host_calls_up_to = 0;
         GpuChecker gpu(k.scene, options);
         const std::vector<std::uint8_t> on_gpu = verdicts(&gpu, k);
         const std::string what = k.name + " " + traversal_name(t) + (small ? " small batch" : "");

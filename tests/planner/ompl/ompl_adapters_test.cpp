@@ -14,6 +14,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include <atomic>
 #include <future>
 #include <thread>
 
@@ -171,6 +172,76 @@ TEST(OmplMotionValidator, AgreesWithOmplsDiscreteMotionValidator) {
   f.si->freeState(last_omp);
   for (std::size_t i = 0; i < motions.size(); i += 2)
     f.si->freeState(const_cast<ob::State*>(motions[i].second));
+  for (ob::State* s : states) f.si->freeState(s);
+}
+
+// A checker that counts the configurations it is asked about (a CPU backend's calls).
+class CountingChecker : public CollisionChecker {
+ public:
+  explicit CountingChecker(CollisionChecker* inner) : inner_(inner) {}
+  std::string backend() const override { return inner_->backend(); }
+  void check(const float* q, std::size_t n, std::uint8_t* verdicts) override {
+    checked += n;
+    inner_->check(q, n, verdicts);
+  }
+  void check_clearances(const float* q, std::size_t n, const float* clearances,
+                        std::uint8_t* verdicts) override {
+    checked += n;
+    inner_->check_clearances(q, n, clearances, verdicts);
+  }
+  std::atomic<std::size_t> checked{0};
+
+ private:
+  CollisionChecker* inner_;
+};
+
+// One motion at a time (RRTConnect's calls), as OMPL's DiscreteMotionValidator: the end
+// state first, then coarse to fine, up to the first collision; so an invalid motion costs
+// about what it costs OMPL's validator, not all its samples.
+TEST(OmplMotionValidator, StopsAtTheFirstCollisionAsOmplsDoes) {
+  Fixture f("pr2_base_arm.yaml");
+  CountingChecker counting(&f.checker);
+  const auto counted_si =
+      std::make_shared<ob::SpaceInformation>(ompl_adapters::make_state_space(f.scene));
+  counted_si->setStateValidityChecker(
+      std::make_shared<ompl_adapters::StateValidityChecker>(counted_si, f.scene, &counting));
+  counted_si->setup();
+  ompl_adapters::MotionValidator ours(counted_si, f.scene, &counting);
+  ob::DiscreteMotionValidator discrete(counted_si);
+  LocalPlanner local(f.scene, &f.checker);
+  const std::vector<ob::State*> states = f.states(400, 11);
+  std::size_t ours_checked = 0, omplds_checked = 0, invalid_samples = 0, invalid_checked = 0;
+  std::size_t invalid = 0, valid = 0;
+  std::vector<float> a(f.scene.space.width()), b(f.scene.space.width());
+  for (int i = 0; i + 1 < 400; ++i) {
+    if (!f.validity->isValid(states[i])) continue;
+    counting.checked = 0;
+    const bool x = ours.checkMotion(states[i], states[i + 1]);
+    const std::size_t by_ours = counting.checked;
+    counting.checked = 0;
+    const bool y = discrete.checkMotion(states[i], states[i + 1]);
+    EXPECT_EQ(x, y) << i;
+    ours_checked += by_ours;
+    omplds_checked += counting.checked;
+    state_to_row(f.scene, states[i], a.data());
+    state_to_row(f.scene, states[i + 1], b.data());
+    if (x) {
+      ++valid;
+      EXPECT_EQ(by_ours, static_cast<std::size_t>(local.segments(a.data(), b.data())))
+          << "a valid motion: every sample and the end";
+    } else {
+      ++invalid;
+      invalid_samples += local.segments(a.data(), b.data());
+      invalid_checked += by_ours;
+    }
+  }
+  ASSERT_GT(valid, 5u);
+  ASSERT_GT(invalid, 20u);
+  EXPECT_LE(ours_checked, omplds_checked + omplds_checked / 4);
+  EXPECT_LT(invalid_checked, invalid_samples / 3) << "invalid motions checked nearly whole";
+  std::cout << "configurations checked: ours " << ours_checked << ", OMPL's validator "
+            << omplds_checked << "; invalid motions: " << invalid_checked << " of "
+            << invalid_samples << " samples\n";
   for (ob::State* s : states) f.si->freeState(s);
 }
 

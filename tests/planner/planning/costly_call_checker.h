@@ -21,6 +21,9 @@ class CostlyCallChecker : public CollisionChecker {
     cpu_.check_clearances(configurations, n, clearances, verdicts);
   }
   std::size_t configurations_per_call_cost() const override { return per_call_; }
+  // No call is free of its fixed cost (as a GPU call): motions are not checked a level a
+  // call for the sake of stopping early.
+  std::size_t cheap_calls_up_to() const override { return 0; }
 
  private:
   CpuChecker cpu_;

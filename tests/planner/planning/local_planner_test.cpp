@@ -139,9 +139,9 @@ TEST(LocalPlanner, AProbeCallFindsMostInvalidMotionsFirst) {
   const std::size_t count = 200;  // motions across the space: most collide somewhere
   std::vector<float> a(pool.begin(), pool.begin() + count * w),
       b(pool.begin() + count * w, pool.end());
-  CpuChecker free_calls(scene);
+  testing::CostlyCallChecker one_call(scene, 0);  // no probe: every sample in one call
   testing::CostlyCallChecker costly_calls(scene, 1024);
-  LocalPlanner plain(scene, &free_calls), probing(scene, &costly_calls);
+  LocalPlanner plain(scene, &one_call), probing(scene, &costly_calls);
   std::vector<std::uint8_t> expected(count), invalid(count);
   plain.check_motions(a.data(), b.data(), count, expected.data());
   probing.check_motions(a.data(), b.data(), count, invalid.data());

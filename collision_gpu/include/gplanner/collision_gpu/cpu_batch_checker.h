@@ -27,6 +27,9 @@ class CpuBatchChecker {
   // planner/planning/certified_motions.h).
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts,
              const float* clearances = nullptr);
+  // The same on at most `threads` threads (1: the calling thread alone).
+  void check(const float* configurations, std::size_t n, std::uint8_t* verdicts,
+             const float* clearances, int threads);
 
   // BV-pair and triangle tests of the last check() to finish (all its threads together),
   // published whole when it ends; with calls from several threads, each of the two reads

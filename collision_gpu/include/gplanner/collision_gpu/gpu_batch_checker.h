@@ -37,6 +37,12 @@ struct GpuCheckerOptions {
   // pair with the environment the rounds spread over more than a warp).
   static constexpr std::size_t kAuto = ~std::size_t(0);
   std::size_t warp_per_pair_up_to = kAuto;
+  // For the planner's gpu backend (GpuChecker; GpuBatchChecker itself always uses the
+  // GPU): calls of up to this many configurations are answered by the same core on host
+  // threads, the calling thread first, where that is faster than a GPU call. kAuto: up to
+  // the crossovers measured on the scene when the checker is made; 0: every call on the
+  // GPU (what tests of the kernels and the query tables ask for).
+  std::size_t host_calls_up_to = kAuto;
 };
 
 // What a check() did.

@@ -19,13 +19,16 @@ int resolve_thread_count(int requested);
 // [0, threads) and no two chunks run at once with the same `thread`. The calling thread
 // works too; exceptions from the body are rethrown on it.
 //
-// Calls may come from many threads at once, and from inside a body: the helper threads
-// of all calls running together number at most max(hardware threads, threads) - 1, and
-// a call that finds them all busy runs its loop on the calling thread alone. A helper
+// The helper threads are started once and kept (a pool shared by the whole process), so
+// that a call costs microseconds, not the tens of microseconds a thread's start and join
+// take. Calls may come from many threads at once, and from inside a body: the helpers of
+// all calls together number at most max(hardware threads, threads) - 1, idle helpers
+// join the calls waiting for them, and a call that finds them all busy runs its loop on
+// the calling thread alone; no call waits for a helper that is busy elsewhere. A helper
 // that the system fails to start is not an error: the threads that did start (at least
-// the calling one) run the whole loop. Many
-// callers (an OMPL planner's threads in a checker's loop) thus share the cores instead
-// of starting threads by the hundred, and no call waits for another's threads.
+// the calling one) run the whole loop. Many callers (an OMPL planner's threads in a
+// checker's loop) thus share the cores instead of starting threads by the hundred. A
+// child process made by fork() starts a pool of its own.
 void parallel_for(std::size_t n, int threads,
                   const std::function<void(std::size_t, std::size_t, int)>& body,
                   std::size_t grain = 16);

@@ -50,6 +50,12 @@ class CollisionChecker {
   // configurations number fewer than this. 0 for the CPU backends (a call costs little
   // beside its configurations).
   virtual std::size_t configurations_per_call_cost() const { return 0; }
+  // Calls of up to this many configurations cost about their configurations alone, no
+  // fixed cost per call (answered on the calling thread, or by host threads that are
+  // already running): callers that can find a collision after checking a few
+  // configurations (a motion's samples, coarse to fine) check them a few at a time up to
+  // this size, stopping at the first collision. The CPU backends: every size.
+  virtual std::size_t cheap_calls_up_to() const { return ~std::size_t(0); }
   bool in_collision(const float* configuration) {
     std::uint8_t verdict = 0;
     check(configuration, 1, &verdict);

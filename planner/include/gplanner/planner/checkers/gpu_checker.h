@@ -1,38 +1,76 @@
 #pragma once
-// The `gpu` backend: the scene's collision model on the GPU, with a chosen traversal.
-// Calls from any number of threads are safe; they take turns on the device (one call's
-// device work at a time, under a lock: GpuBatchChecker), so threads add no throughput
-// here, only batches do.
+// The `gpu` backend: the scene's collision model on the GPU, with a chosen traversal, and
+// the same core on host threads for calls too small to pay for a GPU call.
+//
+// Calls of every size: a GPU call costs tens of microseconds whatever its size (uploads,
+// launches, one synchronisation), while the core on one host thread checks a rigid
+// robot's state in microseconds. So small calls (OMPL's planners check one state or one
+// short motion at a time) are answered on the calling thread, middle-sized ones on the
+// host's thread pool, and large ones on the GPU; the two crossovers are measured on the
+// scene when the checker is made (HostCallRouting). The host and the GPU run the same
+// core (BVHs, leaf tests, tolerance band), so a configuration's verdict does not depend
+// on where it was checked beyond float rounding inside the band.
+//
+// Calls from any number of threads are safe. Host calls run in parallel; GPU calls take
+// turns on the device (one call's device work at a time, under a lock: GpuBatchChecker).
 
 #include <memory>
+#include <vector>
 
+#include "gplanner/collision_gpu/cpu_batch_checker.h"
 #include "gplanner/collision_gpu/gpu_batch_checker.h"
 #include "gplanner/planner/checkers/collision_checker.h"
 #include "gplanner/planner/scene/scene.h"
 
 namespace gplanner {
 
+// Where calls of each size go, and the measurements that chose it.
+struct HostCallRouting {
+  std::size_t calling_thread_up_to = 0;  // calls of up to this many: the calling thread
+  std::size_t host_threads_up_to = 0;    // up to this many: the host's thread pool
+  bool measured = false;                 // false: set by GpuCheckerOptions::host_calls_up_to
+  // The measurements (seconds per call), at the sizes measured.
+  double host_seconds_per_configuration = 0;  // one thread, the scene's uniform samples
+  std::vector<std::size_t> sizes;             // shape [k]
+  std::vector<double> gpu_seconds;            // shape [k]: a GPU call of sizes[i]
+  std::vector<double> host_threads_seconds;   // shape [k]: a thread-pool call of sizes[i]
+};
+
 class GpuChecker : public CollisionChecker {
  public:
-  // Throws std::runtime_error saying why when no GPU can be used.
-  GpuChecker(const Scene& scene, const GpuCheckerOptions& options);
+  // Throws std::runtime_error saying why when no GPU can be used. host_threads: threads
+  // of host calls (0: all cores).
+  GpuChecker(const Scene& scene, const GpuCheckerOptions& options, int host_threads = 0);
+  ~GpuChecker() override;
 
   std::string backend() const override { return "gpu"; }
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override;
   void check_clearances(const float* configurations, std::size_t n, const float* clearances,
                         std::uint8_t* verdicts) override;
-  // Measured on an H100 with the balanced traversal (bench/history/issue4_planning.md): a call of
-  // 100 configurations takes 0.4 to 0.7 ms, 10,000 take 0.9 to 2.0 ms.
+  // Calls beyond the host's crossover: measured on an H100 with the balanced traversal
+  // (bench/history/issue4_planning.md), a call of 100 configurations took 0.4 to 0.7 ms,
+  // 10,000 took 0.9 to 2.0 ms.
   std::size_t configurations_per_call_cost() const override { return 8192; }
+  std::size_t cheap_calls_up_to() const override { return routing_.calling_thread_up_to; }
 
-  // Of the last check() to finish.
-  GpuCheckStats last_stats() const { return checker_.last_stats(); }
-  std::string device_name() const { return checker_.device_name(); }
+  // Of the last check() on the GPU to finish (calls answered on the host leave it as is).
+  GpuCheckStats last_stats() const { return gpu_.last_stats(); }
+  std::string device_name() const { return gpu_.device_name(); }
   Traversal traversal() const { return traversal_; }
+  const HostCallRouting& routing() const { return routing_; }
 
  private:
+  GpuChecker(const CollisionModel& model, const Scene& scene, const GpuCheckerOptions& options,
+             int host_threads);
+  void route(const float* configurations, std::size_t n, const float* clearances,
+             std::uint8_t* verdicts);
+  void measure_routing(const Scene& scene);
+
   Traversal traversal_;
-  GpuBatchChecker checker_;
+  GpuBatchChecker gpu_;
+  CpuBatchChecker host_;
+  int host_threads_;
+  HostCallRouting routing_;
 };
 
 }  // namespace gplanner

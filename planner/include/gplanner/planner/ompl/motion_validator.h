@@ -1,8 +1,12 @@
 #pragma once
 // An OMPL motion validator backed by any of our collision backends: the straight-line
 // motion between two states (the end state included, the start assumed valid, as
-// OMPL's DiscreteMotionValidator does) sampled at the scene's edge resolution, all
-// samples of a motion in one batch. Keeps OMPL's valid and invalid motion counters.
+// OMPL's DiscreteMotionValidator does) sampled at the scene's edge resolution. As
+// OMPL's, a single motion is checked end state first, then coarse to fine (the
+// midpoint, the quarter points, ...), stopping at the first collision; with lastValid,
+// in order from the start. Small calls are answered on the calling thread
+// (CollisionChecker::cheap_calls_up_to), so one motion costs what its samples cost.
+// Keeps OMPL's valid and invalid motion counters.
 // Calls from any number of threads run at once, each with its own samples (every
 // backend takes concurrent calls; see collision_checker.h for which run in parallel);
 // only the counters are updated under a lock. The batch extension checks many motions

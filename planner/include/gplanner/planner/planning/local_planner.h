@@ -11,7 +11,9 @@
 // farther than that per segment (MotionBound). Samples are visited coarse to fine (the midpoint,
 // then the quarter points, ...), level by level across all motions: a motion found invalid drops
 // out before its finer samples are checked, and once the samples left are few they all go in one
-// batch.
+// batch, unless the levels are small enough for the checker to answer on the calling thread
+// (CollisionChecker::cheap_calls_up_to): then level by level to the end, stopping at the
+// first collision.
 //
 // Threads: check_motions and last_valid_fraction take calls from several threads at once
 // (the OMPL motion validator's), each with its own samples, the checker taking concurrent
@@ -85,9 +87,11 @@ class LocalPlanner : public MotionChecker {
   // Polled between batches of check_motions; true stops it. Empty: never stop.
   void set_stop(std::function<bool()> should_stop) { should_stop_ = std::move(should_stop); }
 
-  // Every sample of the motion, in order from a (exclusive) to b (inclusive), in one
-  // batch: the fraction of the way of the last valid sample before the first
-  // collision (0 when the first sample collides), or 1 when all are free.
+  // The samples of the motion, in order from a (exclusive) to b (inclusive), up to the
+  // first collision (a few per call where the checker answers small calls on the calling
+  // thread, else all in one batch): the fraction of the way of the last valid sample
+  // before the first collision (0 when the first sample collides), or 1 when all are
+  // free.
   double last_valid_fraction(const float* a, const float* b);
 
   // The checker's configurations_per_call_cost(), and the one-batch limit above.

@@ -65,8 +65,8 @@ void GpuChecker::measure_routing(const Scene& scene) {
   // The scene's uniform samples stand for the planner's states: a mix of free and
   // colliding ones, as milestones and motion samples are.
   const std::size_t width = scene.space.width();
-  const std::vector<std::size_t> sizes = {1, 8, 64, 512, 4096};
-  const std::size_t most = sizes.back();
+  const std::vector<std::size_t> sizes = {1, 4, 16, 64, 256, 1024, 4096};
+  const std::size_t most = 2 * sizes.back();
   std::vector<float> q(most * width);
   std::mt19937_64 rng(1);
   for (std::size_t i = 0; i < most; ++i) scene.space.sample_uniform(&rng, &q[i * width]);
@@ -74,28 +74,48 @@ void GpuChecker::measure_routing(const Scene& scene) {
   HostCallRouting& r = routing_;
   r.measured = true;
   r.sizes = sizes;
-  gpu_.check(q.data(), most, verdicts.data());  // warm-up: first launches, caches
-  // One host thread: 128 states, the fastest of three passes.
-  const std::size_t host_sample = 128;
+  gpu_.check(q.data(), sizes.back(), verdicts.data());  // warm-up: first launches, caches
+  // The median of five calls, each on other rows: a few hard configurations make a small
+  // call's cost, so one set of rows would say little.
+  const auto median_of_calls = [&](std::size_t n, auto&& call) {
+    std::vector<double> seconds;
+    for (std::size_t k = 0; k < 5; ++k) {
+      const float* rows = q.data() + (k * n) % (most - n + 1) * width;
+      seconds.push_back(fastest_seconds(1, [&] { call(rows, n); }));
+    }
+    std::nth_element(seconds.begin(), seconds.begin() + 2, seconds.end());
+    return seconds[2];
+  };
+  // One host thread: 256 states.
+  const std::size_t host_sample = 256;
   r.host_seconds_per_configuration =
-      fastest_seconds(3, [&] { host_.check(q.data(), host_sample, verdicts.data(), nullptr, 1); }) /
+      fastest_seconds(1, [&] { host_.check(q.data(), host_sample, verdicts.data(), nullptr, 1); }) /
       host_sample;
+  bool host_still_competes = true;
   for (const std::size_t n : sizes) {
-    r.gpu_seconds.push_back(fastest_seconds(3, [&] { gpu_.check(q.data(), n, verdicts.data()); }));
+    r.gpu_seconds.push_back(median_of_calls(
+        n, [&](const float* rows, std::size_t m) { gpu_.check(rows, m, verdicts.data()); }));
+    // Host calls of up to a chunk of the pool's loops run on the calling thread alone;
+    // once the pool is twice as slow as the GPU, larger calls are not timed there.
     r.host_threads_seconds.push_back(
-        fastest_seconds(3, [&] { host_.check(q.data(), n, verdicts.data(), nullptr, host_threads_); }));
+        host_still_competes
+            ? median_of_calls(n,
+                              [&](const float* rows, std::size_t m) {
+                                host_.check(rows, m, verdicts.data(), nullptr, host_threads_);
+                              })
+            : 1e30);
+    host_still_competes = r.host_threads_seconds.back() < 2 * r.gpu_seconds.back();
   }
-  // The calling thread while it beats both, then the thread pool while it beats the GPU
-  // (each from the smallest call up, at powers of two).
-  const auto one_thread = [&](std::size_t n) { return r.host_seconds_per_configuration * n; };
-  const auto pool = [&](std::size_t n) { return interpolate(sizes, r.host_threads_seconds, n); };
+  // The host while it beats the GPU, from the smallest call up (powers of two); calls of
+  // up to a chunk (16) run on the calling thread, larger ones on the pool.
+  const auto host = [&](std::size_t n) {
+    return std::min(r.host_seconds_per_configuration * n,
+                    interpolate(sizes, r.host_threads_seconds, n));
+  };
   const auto gpu = [&](std::size_t n) { return interpolate(sizes, r.gpu_seconds, n); };
-  std::size_t n = 1;
-  for (; n <= (std::size_t(1) << 20) && one_thread(n) <= std::min(pool(n), gpu(n)); n *= 2)
-    r.calling_thread_up_to = n;
-  r.host_threads_up_to = r.calling_thread_up_to;
-  for (; n <= (std::size_t(1) << 20) && std::min(one_thread(n), pool(n)) <= gpu(n); n *= 2)
+  for (std::size_t n = 1; n <= sizes.back() && host(n) <= gpu(n); n *= 2)
     r.host_threads_up_to = n;
+  r.calling_thread_up_to = std::min<std::size_t>(r.host_threads_up_to, 16);
 }
 
 void GpuChecker::route(const float* configurations, std::size_t n, const float* clearances,

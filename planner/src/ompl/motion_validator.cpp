@@ -2,6 +2,8 @@
 
 #include <ompl/base/SpaceInformation.h>
 
+#include <chrono>
+
 #include "gplanner/planner/ompl/state_space.h"
 #include "gplanner/planner/planning/roadmap_planner.h"
 #include "gplanner/planner/scene/scene.h"
@@ -50,15 +52,37 @@ bool MotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base:
   b.resize(width);
   state_to_row(scene_, s1, a.data());
   state_to_row(scene_, s2, b.data());
-  bool valid = false;
-  if (edges_ == EdgeChecks::kCertified) {
-    valid = certified_free(a.data(), b.data());
-  } else {
-    std::uint8_t end = 1, between = 1;
-    checker_->check(b.data(), 1, &end);
-    valid = end == 0 && local_.check_motions(a.data(), b.data(), 1, &between) && between == 0;
-  }
+  const bool valid = edges_ == EdgeChecks::kCertified ? certified_free(a.data(), b.data())
+                                                      : sampled_free(a.data(), b.data());
   count(valid ? 1 : 0, valid ? 0 : 1);
+  return valid;
+}
+
+bool MotionValidator::sampled_free(const float* a, const float* b) const {
+  const auto by_levels = [&] {
+    std::uint8_t end = 1, between = 1;
+    checker_->check(b, 1, &end);
+    return end == 0 && local_.check_motions(a, b, 1, &between) && between == 0;
+  };
+  if (checker_->configurations_per_call_cost() == 0) return by_levels();  // calls cost nothing
+  int way = 0;
+  {
+    const std::lock_guard<std::mutex> lock(way_.mutex);
+    const std::size_t call = way_.calls++;
+    if (way_.timed[0] < 4 || way_.timed[1] < 4) {
+      way = way_.timed[1] < way_.timed[0] ? 1 : 0;
+    } else {
+      way = way_.mean_seconds[1] < way_.mean_seconds[0] ? 1 : 0;
+      if (call % 16 == 0) way = 1 - way;  // keep the other way's mean current
+    }
+  }
+  const auto started = std::chrono::steady_clock::now();
+  const bool valid = way == 0 ? by_levels() : local_.last_valid_fraction(a, b, true) == 1.0;
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  const std::lock_guard<std::mutex> lock(way_.mutex);
+  double& mean = way_.mean_seconds[way];
+  mean = way_.timed[way]++ == 0 ? seconds : 0.9 * mean + 0.1 * seconds;
   return valid;
 }
 

@@ -187,14 +187,14 @@ bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t
   return true;
 }
 
-double LocalPlanner::last_valid_fraction(const float* a, const float* b) {
+double LocalPlanner::last_valid_fraction(const float* a, const float* b, bool one_call) {
   const ConfigurationSpace& space = scene_.space;
   const std::size_t width = space.width();
   const int n = segments(a, b);
   // In order from a; where small calls are answered on the calling thread, a few samples
   // a call (1, 2, 4, ...) up to the first collision, else all in one call.
   const std::size_t cheap_calls_up_to = checker_->cheap_calls_up_to();
-  std::size_t chunk = cheap_calls_up_to > 0 ? 1 : static_cast<std::size_t>(n);
+  std::size_t chunk = cheap_calls_up_to > 0 && !one_call ? 1 : static_cast<std::size_t>(n);
   std::vector<float> samples;
   std::vector<std::uint8_t> verdicts;
   std::size_t batches = 0;

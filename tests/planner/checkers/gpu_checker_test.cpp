@@ -174,11 +174,12 @@ TEST(GpuChecker, RoutesCallsOfEverySizeByMeasuredCrossovers) {
     EXPECT_GT(r.host_seconds_per_configuration, 0.0) << name;
     for (const double t : r.gpu_seconds) EXPECT_GT(t, 0.0) << name;
     EXPECT_LE(r.calling_thread_up_to, r.host_threads_up_to) << name;
-    // The first decision as the measurements say: one state on the calling thread when
-    // that beat a GPU call of one state.
-    EXPECT_EQ(r.calling_thread_up_to > 0,
-              r.host_seconds_per_configuration <=
-                  std::min(r.gpu_seconds.front(), r.host_threads_seconds.front()))
+    EXPECT_LE(r.calling_thread_up_to, 16u) << name;
+    // The first decision as the measurements say: one state on the host when that beat a
+    // GPU call of one state.
+    EXPECT_EQ(r.host_threads_up_to > 0,
+              std::min(r.host_seconds_per_configuration, r.host_threads_seconds.front()) <=
+                  r.gpu_seconds.front())
         << name;
     std::cout << name << ": calling thread up to " << r.calling_thread_up_to
               << ", host threads up to " << r.host_threads_up_to << "; one state "

@@ -32,8 +32,10 @@ struct HostCallRouting {
   // The measurements (seconds per call), at the sizes measured.
   double host_seconds_per_configuration = 0;  // one thread, the scene's uniform samples
   std::vector<std::size_t> sizes;             // shape [k]
-  std::vector<double> gpu_seconds;            // shape [k]: a GPU call of sizes[i]
-  std::vector<double> host_threads_seconds;   // shape [k]: a thread-pool call of sizes[i]
+  std::vector<double> gpu_seconds;            // shape [k]: a GPU call of sizes[i] (median)
+  // shape [k]: a host call of sizes[i] (median; 1e30 where not timed: the sizes after
+  // one at which the host took twice the GPU's time)
+  std::vector<double> host_threads_seconds;
 };
 
 class GpuChecker : public CollisionChecker {
@@ -51,7 +53,8 @@ class GpuChecker : public CollisionChecker {
   // (bench/history/issue4_planning.md), a call of 100 configurations took 0.4 to 0.7 ms,
   // 10,000 took 0.9 to 2.0 ms.
   std::size_t configurations_per_call_cost() const override { return 8192; }
-  std::size_t cheap_calls_up_to() const override { return routing_.calling_thread_up_to; }
+  // Calls the host answers: no GPU call's fixed cost.
+  std::size_t cheap_calls_up_to() const override { return routing_.host_threads_up_to; }
 
   // Of the last check() on the GPU to finish (calls answered on the host leave it as is).
   GpuCheckStats last_stats() const { return gpu_.last_stats(); }

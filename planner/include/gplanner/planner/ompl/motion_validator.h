@@ -63,6 +63,9 @@ class MotionValidator : public ompl::base::MotionValidator {
   void count(std::size_t valid, std::size_t invalid) const;
   // Certified: whether the motion a -> b (rows) is certified free.
   bool certified_free(const float* a, const float* b) const;
+  // Sampled: whether the motion a -> b is free, its end included, in the way that has
+  // cost less on this scene so far (ChoiceOfWay).
+  bool sampled_free(const float* a, const float* b) const;
 
   const Scene& scene_;
   CollisionChecker* checker_;
@@ -70,6 +73,20 @@ class MotionValidator : public ompl::base::MotionValidator {
   mutable LocalPlanner local_;  // takes concurrent calls
   EdgeChecks edges_ = EdgeChecks::kSampled;
   mutable CertifiedMotions certifier_;  // takes concurrent calls
+
+  // A single motion on a checker with a fixed cost per call (the gpu backend) is checked
+  // one of two ways: level by level from the end state up to the first collision (small
+  // calls, which the checker answers on the host), or every sample and the end in one
+  // call (one GPU call). Which costs less depends on the robot and on how often motions
+  // collide early, so both are timed on the calls themselves: the way with the lower
+  // running mean is taken, the other every 16th call.
+  struct ChoiceOfWay {
+    std::mutex mutex;
+    double mean_seconds[2] = {0, 0};  // [levels, one call]
+    std::size_t timed[2] = {0, 0};
+    std::size_t calls = 0;
+  };
+  mutable ChoiceOfWay way_;
 };
 
 }  // namespace ompl_adapters

@@ -92,7 +92,8 @@ class LocalPlanner : public MotionChecker {
   // thread, else all in one batch): the fraction of the way of the last valid sample
   // before the first collision (0 when the first sample collides), or 1 when all are
   // free.
-  double last_valid_fraction(const float* a, const float* b);
+  // one_call: every sample in one call, whatever the checker.
+  double last_valid_fraction(const float* a, const float* b, bool one_call = false);
 
   // The checker's configurations_per_call_cost(), and the one-batch limit above.
   std::size_t configurations_per_call_cost() const {

@@ -51,6 +51,9 @@ RoadmapOmplPlanner::RoadmapOmplPlanner(const ob::SpaceInformationPtr& si, const 
   specs_.multithreaded = false;
   specs_.optimizingPaths = false;
   options_.seed = 0;  // drawn from rng_
+  // A termination condition's deadline is unknown: slices short enough that one of
+  // OMPL's time limits is kept within about 0.1 s, long enough for large batches.
+  options_.slice_s = 0.05;
   neighbors_ = make_neighbor_finder(make_metric(scene.space, scene.planner), checker->backend());
   declare_params();
   // OMPL's PRM's names first, then ours.
@@ -88,6 +91,9 @@ void RoadmapOmplPlanner::declare_params() {
   params_.declareParam<bool>(
       "certify_path", [o](bool on) { o->certify_path = on; }, [o] { return o->certify_path; });
   params_["certify_path"].setRangeSuggestion("0,1");
+  params_.declareParam<double>(
+      "slice_seconds", [o](double s) { o->slice_s = s; }, [o] { return o->slice_s; });
+  params_["slice_seconds"].setRangeSuggestion("0.005:0.005:1");
   params_.declareParam<unsigned long long>(
       "seed", [o](unsigned long long seed) { o->seed = seed; }, [o] { return o->seed; });
   if (strategy_ == RoadmapStrategy::kLazyPrm) {

@@ -51,6 +51,7 @@ class RoadmapOmplPlanner : public ompl::base::Planner {
   ~RoadmapOmplPlanner() override;
 
   void setup() override;
+  using ompl::base::Planner::solve;  // solve(seconds) too
   ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition& ptc) override;
   void clear() override;
   void getPlannerData(ompl::base::PlannerData& data) const override;

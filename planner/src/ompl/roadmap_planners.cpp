@@ -143,6 +143,7 @@ std::pair<std::size_t, std::size_t> RoadmapOmplPlanner::checked_edges() const {
 
 ob::PlannerStatus RoadmapOmplPlanner::solve(const ob::PlannerTerminationCondition& ptc) {
   checkValidity();
+  pis_.restart();  // the problem's start and goal at every call (PRM answers from its roadmap)
   const ob::State* start = pis_.nextStart();
   if (start == nullptr) {
     OMPL_ERROR("%s: There are no valid initial states!", getName().c_str());
@@ -178,7 +179,7 @@ ob::PlannerStatus RoadmapOmplPlanner::solve(const ob::PlannerTerminationConditio
   }
   options.seed = roadmap_seed_;
   OMPL_INFORM("%s: Starting planning with %zu states already in datastructure (seed %llu)",
-              getName().c_str(), planner_->roadmap().vertex_count(), roadmap_seed_);
+              getName().c_str(), planner_->roadmap().vertex_count(), roadmap_seed_.load());
   const std::size_t states_before = planner_->roadmap().vertex_count();
   const auto [valid_before, invalid_before] = checked_edges();
   planner_->set_options(options);

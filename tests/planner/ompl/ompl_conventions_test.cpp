@@ -127,6 +127,11 @@ TEST(OmplConventions, RunsAfterClearDifferAndAnExplicitSeedIsKept) {
   ASSERT_EQ(planner->solve(60.0), ob::PlannerStatus::EXACT_SOLUTION);
   const unsigned long long first_seed = planner->roadmap_seed();
   const std::vector<float> first = planner->last_result().path;
+  // Without clear(): the same roadmap answers again.
+  p.pdef->clearSolutionPaths();
+  ASSERT_EQ(planner->solve(60.0), ob::PlannerStatus::EXACT_SOLUTION);
+  EXPECT_EQ(planner->roadmap_seed(), first_seed);
+  EXPECT_EQ(planner->last_result().rounds, 1u);
   // As Benchmark runs them: clear() between runs.
   planner->clear();
   p.pdef->clearSolutionPaths();

@@ -74,7 +74,7 @@ class RoadmapOmplPlanner : public ompl::base::Planner {
   RoadmapStrategy strategy_;
   PlanOptions options_;
   ompl::RNG rng_;  // draws roadmap seeds
-  unsigned long long roadmap_seed_ = 0;
+  std::atomic<unsigned long long> roadmap_seed_{0};
   std::unique_ptr<NeighborFinder> neighbors_;
   std::unique_ptr<RoadmapPlanner> planner_;
   PlanResult last_;

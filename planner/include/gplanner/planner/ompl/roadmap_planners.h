@@ -32,6 +32,7 @@
 #include <atomic>
 #include <limits>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "gplanner/planner/checkers/collision_checker.h"

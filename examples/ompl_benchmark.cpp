@@ -18,7 +18,7 @@
 #include <iostream>
 #include <string>
 
-#include "gplanner/planner/checkers/checker_factory.h"
+#include "gplanner/planner/ompl/checker_factory.h"
 #include "gplanner/planner/ompl/motion_validator.h"
 #include "gplanner/planner/ompl/roadmap_planners.h"
 #include "gplanner/planner/ompl/state_space.h"
@@ -54,9 +54,8 @@ int main(int argc, char** argv) {
   }
   try {
     const gplanner::Scene scene = gplanner::load_scene(argv[1]);
-    std::string notice;
-    const auto checker = gplanner::make_collision_checker(scene, backend, {}, &notice);
-    if (!notice.empty()) std::cerr << "notice: " << notice << "\n";
+    // Says through OMPL's console (OMPL_WARN) when the gpu backend runs on the CPU.
+    const auto checker = gplanner::ompl_adapters::make_collision_checker(scene, backend);
 
     // The two lines that give an OMPL setup gplanner's checker: a validity checker and a
     // motion validator on gplanner's backend, in gplanner's state space of the scene.

@@ -77,8 +77,18 @@ TEST(OmplBenchmark, LogReadByOmplBenchmarkStatisticsIntoSqlite) {
     EXPECT_GT(std::stod(r[3]), 0.0) << planner;  // solution length
     EXPECT_GT(std::stoi(r[4]), 0) << planner;    // graph states
   }
-  // OMPL's planner checked its motions with our motion validator: some were valid.
+  // OMPL's planner checked its motions with our motion validator, ours their edges and
+  // counted them there: some were valid.
   EXPECT_GT(std::stod(rows["geometric_RRTConnect"][5]), 0.0);
+  EXPECT_GT(std::stod(rows["geometric_gplanner LazyPRM"][5]), 0.0);
+  // Our planners' declared parameters are in the log.
+  const Output settings =
+      run("python3 -c \"import sqlite3; c = sqlite3.connect('" + db +
+          "'); [print(r[1]) for r in c.execute('select name, settings from plannerConfigs') if "
+          "r[0] == 'geometric_gplanner LazyPRM']\"");
+  ASSERT_EQ(settings.status, 0) << settings.text;
+  for (const char* param : {"milestones", "max_nearest_neighbors", "lazy_batch_paths", "seed"})
+    EXPECT_NE(settings.text.find(param), std::string::npos) << param << "\n" << settings.text;
 }
 
 }  // namespace

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs gplanner from BUILD_DIR to a temporary prefix; checks the library's versioned
-# SONAME against the version header, runs the installed gplan from its prefix (no
-# library path), then builds and runs tests/install/downstream against the prefix with
-# find_package(gplanner) only, and again with pkg-config's flags only.
+# SONAME against the version header and that the CMake package exports gplanner::gplanner
+# alone, runs the installed gplan from its prefix (no library path), then builds and runs
+# tests/install/downstream (OMPL's RRTConnect from 4 threads on one shared checker, and
+# our lazy PRM, every path re-checked) against the prefix with find_package(gplanner)
+# only, and again with pkg-config's flags only.
 # usage: install_and_use.sh BUILD_DIR SCENE
 set -euo pipefail
 build=$1
@@ -21,6 +23,11 @@ version=$(sed -n 's/#define GPLANNER_VERSION_STRING "\(.*\)"/\1/p' "$prefix/incl
 case $soname in libgplanner.so.[0-9]*.[0-9]*) ;; *) echo "SONAME '$soname' is not versioned"; exit 1;; esac
 test -e "$libdir/$soname" || { echo "no $soname beside libgplanner.so"; exit 1; }
 case $version in "${soname#libgplanner.so.}".*) ;; *) echo "SONAME $soname, version $version"; exit 1;; esac
+# The package: gplanner::gplanner alone, nothing internal (object libraries, helpers).
+exported=$(sed -n 's/^add_library(\([^ ]*\) .*/\1/p' "$libdir"/cmake/gplanner/gplannerTargets.cmake)
+test "$exported" = "gplanner::gplanner" || { echo "exported targets: $exported"; exit 1; }
+! grep -l "gplanner_common\|gplanner_collision_gpu\|gplanner_knn_gpu\|gplanner_ompl" \
+  "$libdir"/cmake/gplanner/*.cmake || { echo "internal targets in the package"; exit 1; }
 # The installed gplan runs from its prefix, no library path set.
 env -u LD_LIBRARY_PATH "$prefix/bin/gplan" info > "$work/gplan_info.log"
 env -u LD_LIBRARY_PATH "$prefix/bin/gplan" plan "$scene" --backend cpu --time-limit 60 \

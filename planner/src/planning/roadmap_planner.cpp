@@ -37,6 +37,7 @@ class StageTimer {
 // 40 ms, lazy PRM on 16 cores took up to 1.8x its time at bc00c10 on the cpu backend:
 // bench/RESULTS.md, "The time limit").
 double slice_seconds(const PlanOptions& options) {
+  if (options.slice_s > 0) return options.slice_s;
   return std::clamp(0.02 * options.time_limit_s, 0.02, 0.25);
 }
 

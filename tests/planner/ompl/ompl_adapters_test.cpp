@@ -366,8 +366,8 @@ TEST(OmplPlanners, OurPlannersRunAsOmplPlanners) {
     EXPECT_EQ(data.numVertices(), planner->last_result().milestones);
     EXPECT_GT(data.numEdges(), 0u);
     const auto& properties = planner->getPlannerProgressProperties();
-    ASSERT_EQ(properties.count("milestones INTEGER"), 1u);
-    EXPECT_EQ(properties.at("milestones INTEGER")(),
+    ASSERT_EQ(properties.count("milestone count INTEGER"), 1u);
+    EXPECT_EQ(properties.at("milestone count INTEGER")(),
               std::to_string(planner->last_result().milestones));
   }
 }

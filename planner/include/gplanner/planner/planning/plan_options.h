@@ -53,6 +53,10 @@ struct PlanOptions {
   CertifiedMotionOptions certified;
   LocalPlannerOptions local;
   SamplerOptions sampler;  // how milestones are drawn
+  // How long one slice of a long stage (a checker call, a k-NN chunk) should take, and so
+  // how often a stop or the time limit is seen; 0: 2 % of the time limit, within
+  // [20 ms, 250 ms]. Callers with no time limit but a stop condition (OMPL's) set it.
+  double slice_s = 0;
   std::function<void(const PlanProgress&)> progress;
   // Polled often (between slices of every stage, each kept short): true stops planning
   // (OMPL's termination conditions, gplan's SIGINT), as the time limit does.

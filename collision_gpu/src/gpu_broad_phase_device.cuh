@@ -1,0 +1,302 @@
+#pragma once
+// Device code of the GPU sphere broad phase (gpu_broad_phase.cu launches it): packing and
+// checking the spheres with their extents, the all-pairs tiles, the sort-and-sweep and
+// the uniform grid. Every method decides a pair with geometry::spheres_overlap; the
+// culling (sweep intervals, grid cells) is conservative by construction
+// (geometry::cull_low/cull_high, cells wider than any overlapping pair's reach).
+
+#include <cooperative_groups.h>
+#include <cuda_runtime.h>
+
+#include <cstdint>
+#include <cstring>
+
+#include "gplanner/collision_gpu/geometry/sphere_overlap.h"
+
+namespace gplanner::detail::broad_phase {
+
+namespace cg = cooperative_groups;
+
+constexpr int kBlock = 256;
+constexpr unsigned long long kNoBadSphere = ~0ull;
+// Grid cells per axis at most (cells are widened where the spheres' spread needs more):
+// cell coordinates 1 .. 2^20 + 1, and their neighbours, fit 21 bits; a key is 63 bits.
+constexpr double kMaxCellsPerAxis = double(1 << 20);
+constexpr int kCellBits = 21;
+// Cells are this much wider than the largest diameter: a pair the rule accepts is at most
+// (r_a + r_b)(1 + 4 2^-24) apart along an axis, so it lies in neighbouring cells.
+constexpr double kCellSlack = 1e-4;
+
+// A float's bits, ordered as the floats are (for atomicMin/Max and radix sort keys).
+__device__ __forceinline__ unsigned ordered_bits(float f) {
+  const unsigned u = __float_as_uint(f);
+  return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+}
+__host__ __device__ inline float from_ordered_bits(unsigned u) {
+  const unsigned bits = (u & 0x80000000u) ? (u & 0x7fffffffu) : ~u;
+#if defined(__CUDA_ARCH__)
+  return __uint_as_float(bits);
+#else
+  float f;
+  std::memcpy(&f, &bits, sizeof f);
+  return f;
+#endif
+}
+
+// What one frame accumulates on the device; the host reads it back once, at the end.
+struct FrameState {
+  double sum[3];             // of the centres, per axis
+  double square[3];          // of the centres' squares, per axis
+  unsigned low[3];           // ordered bits of the smallest centre coordinate, per axis
+  unsigned high[3];          // ... of the largest
+  unsigned radius_max;       // ordered bits of the largest radius
+  unsigned long long pairs;  // pairs found (may exceed the buffer: then run again)
+  unsigned long long bad;    // the first sphere that is not finite, or kNoBadSphere
+};
+
+// Where the pairs go: a buffer of `capacity` and an atomic counter of all found.
+struct PairOutput {
+  uint2* pairs;  // shape [capacity]: (i, j), i < j
+  unsigned long long capacity;
+  unsigned long long* count;
+};
+
+// One slot per pair, reserved by one atomic per group of threads that found one together.
+__device__ __forceinline__ void emit_pair(const PairOutput& out, unsigned a, unsigned b) {
+  const cg::coalesced_group group = cg::coalesced_threads();
+  unsigned long long base = 0;
+  if (group.thread_rank() == 0) base = atomicAdd(out.count, (unsigned long long)group.size());
+  const unsigned long long slot = group.shfl(base, 0) + group.thread_rank();
+  if (slot < out.capacity) out.pairs[slot] = make_uint2(min(a, b), max(a, b));
+}
+
+__device__ __forceinline__ bool overlap(float4 a, float4 b) {
+  return geometry::spheres_overlap(a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w);
+}
+
+template <typename T>
+__device__ __forceinline__ T warp_sum(T v) {
+  for (int offset = 16; offset > 0; offset /= 2) v += __shfl_down_sync(0xffffffffu, v, offset);
+  return v;
+}
+__device__ __forceinline__ unsigned warp_min(unsigned v) {
+  for (int offset = 16; offset > 0; offset /= 2)
+    v = min(v, __shfl_down_sync(0xffffffffu, v, offset));
+  return v;
+}
+__device__ __forceinline__ unsigned warp_max(unsigned v) {
+  for (int offset = 16; offset > 0; offset /= 2)
+    v = max(v, __shfl_down_sync(0xffffffffu, v, offset));
+  return v;
+}
+
+// Packs centres [n, 3] and radii [n] into spheres [n] (x, y, z, r); a sphere that is not
+// finite, or has a negative radius, is recorded (the smallest index) and replaced by a
+// point at the origin so that the rest of the frame stays well defined. With `Extents`,
+// also accumulates the centres' sums, squares, bounds and the largest radius.
+template <bool Extents>
+__global__ void pack_kernel(const float* centers, const float* radii, unsigned n, float4* spheres,
+                            FrameState* frame) {
+  const unsigned i = blockIdx.x * blockDim.x + threadIdx.x;
+  float4 s = make_float4(0.f, 0.f, 0.f, 0.f);
+  const bool valid = i < n;
+  if (valid) {
+    s = make_float4(centers[3 * i], centers[3 * i + 1], centers[3 * i + 2], radii[i]);
+    if (!isfinite(s.x) || !isfinite(s.y) || !isfinite(s.z) || !isfinite(s.w) || !(s.w >= 0.f)) {
+      atomicMin(&frame->bad, (unsigned long long)i);
+      s = make_float4(0.f, 0.f, 0.f, 0.f);
+    }
+    spheres[i] = s;
+  }
+  if constexpr (Extents) {
+    const float c[3] = {s.x, s.y, s.z};
+    const bool lane0 = (threadIdx.x & 31) == 0;
+    for (int a = 0; a < 3; ++a) {
+      const double sum = warp_sum(valid ? double(c[a]) : 0.0);
+      const double square = warp_sum(valid ? double(c[a]) * double(c[a]) : 0.0);
+      const unsigned low = warp_min(valid ? ordered_bits(c[a]) : ~0u);
+      const unsigned high = warp_max(valid ? ordered_bits(c[a]) : 0u);
+      if (lane0) {
+        atomicAdd(&frame->sum[a], sum);
+        atomicAdd(&frame->square[a], square);
+        atomicMin(&frame->low[a], low);
+        atomicMax(&frame->high[a], high);
+      }
+    }
+    const unsigned radius = warp_max(valid ? ordered_bits(s.w) : 0u);
+    if (lane0) atomicMax(&frame->radius_max, radius);
+  }
+}
+
+// All pairs, tiled: block (bi, bj), bj >= bi, tests its 256 spheres i of tile bi against
+// the 256 spheres j of tile bj held in shared memory, j > i.
+__global__ void all_pairs_kernel(const float4* spheres, unsigned n, PairOutput out) {
+  const unsigned bi = blockIdx.x, bj = blockIdx.y;
+  if (bj < bi) return;
+  __shared__ float4 tile[kBlock];
+  const unsigned j0 = bj * kBlock;
+  if (j0 + threadIdx.x < n) tile[threadIdx.x] = spheres[j0 + threadIdx.x];
+  __syncthreads();
+  const unsigned i = bi * kBlock + threadIdx.x;
+  if (i >= n) return;
+  const float4 a = spheres[i];
+  const unsigned end = min(unsigned(kBlock), n - j0);
+  for (unsigned t = bi == bj ? threadIdx.x + 1 : 0; t < end; ++t) {
+    if (overlap(a, tile[t])) emit_pair(out, i, j0 + t);
+  }
+}
+
+// The axis of largest variance (the lowest on ties), the same in every thread.
+__host__ __device__ inline int sweep_axis(const FrameState& frame, unsigned n) {
+  int best = 0;
+  double best_variance = -1;
+  for (int a = 0; a < 3; ++a) {
+    const double mean = frame.sum[a] / double(n);
+    const double variance = frame.square[a] / double(n) - mean * mean;
+    if (variance > best_variance) {
+      best = a;
+      best_variance = variance;
+    }
+  }
+  return best;
+}
+
+__device__ __forceinline__ float axis_value(float4 s, int axis) {
+  return axis == 0 ? s.x : (axis == 1 ? s.y : s.z);
+}
+
+// Sort-and-sweep, 1: each sphere's key, the ordered bits of its interval's low end along
+// the sweep axis; its index as the value.
+__global__ void sweep_keys_kernel(const float4* spheres, unsigned n, const FrameState* frame,
+                                  unsigned* keys, unsigned* ids) {
+  const unsigned i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const float4 s = spheres[i];
+  keys[i] = ordered_bits(geometry::cull_low(axis_value(s, sweep_axis(*frame, n)), s.w));
+  ids[i] = i;
+}
+
+// Sort-and-sweep, 2: the spheres in sorted order with their intervals.
+__global__ void sweep_gather_kernel(const float4* spheres, const unsigned* sorted_keys,
+                                    const unsigned* sorted_ids, unsigned n, const FrameState* frame,
+                                    float4* sorted, float* low, float* high) {
+  const unsigned k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const float4 s = spheres[sorted_ids[k]];
+  sorted[k] = s;
+  low[k] = from_ordered_bits(sorted_keys[k]);
+  high[k] = geometry::cull_high(axis_value(s, sweep_axis(*frame, n)), s.w);
+}
+
+// Sort-and-sweep, 3: sphere k against every later one whose interval starts before its
+// own ends.
+__global__ void sweep_kernel(const float4* sorted, const float* low, const float* high,
+                             const unsigned* sorted_ids, unsigned n, PairOutput out) {
+  const unsigned k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const float4 a = sorted[k];
+  const float end = high[k];
+  const unsigned id = sorted_ids[k];
+  for (unsigned m = k + 1; m < n && low[m] <= end; ++m) {
+    if (overlap(a, sorted[m])) emit_pair(out, id, sorted_ids[m]);
+  }
+}
+
+// The uniform grid: the lowest corner of the centres and the cell's side, the same in
+// every thread (and on the host, from the frame read back).
+struct GridFrame {
+  double origin[3];
+  double cell;
+};
+
+__host__ __device__ inline GridFrame grid_frame(const FrameState& frame) {
+  GridFrame g{};
+  double widest = 0;
+  for (int a = 0; a < 3; ++a) {
+    g.origin[a] = from_ordered_bits(frame.low[a]);
+    widest = fmax(widest, double(from_ordered_bits(frame.high[a])) - g.origin[a]);
+  }
+  const double radius = from_ordered_bits(frame.radius_max);
+  g.cell =
+      fmax(2 * radius * (1 + kCellSlack) + 4 * geometry::kCullFloor, widest / kMaxCellsPerAxis);
+  if (!(g.cell > 0)) g.cell = 1;  // every sphere a point, all at one place
+  return g;
+}
+
+__device__ __forceinline__ unsigned long long cell_key(unsigned x, unsigned y, unsigned z) {
+  return (static_cast<unsigned long long>(x) << (2 * kCellBits)) |
+         (static_cast<unsigned long long>(y) << kCellBits) | z;
+}
+
+// The cell of a centre, each coordinate from 1 (so that its neighbours are never below 0).
+__device__ __forceinline__ uint3 cell_of(float4 s, const GridFrame& g) {
+  const double inverse = 1.0 / g.cell;
+  const auto q = [&](float c, int a) {
+    return 1u + static_cast<unsigned>(
+                    fmin(floor((double(c) - g.origin[a]) * inverse), kMaxCellsPerAxis));
+  };
+  return make_uint3(q(s.x, 0), q(s.y, 1), q(s.z, 2));
+}
+
+// Grid, 1: each sphere's cell key; its index as the value.
+__global__ void grid_keys_kernel(const float4* spheres, unsigned n, const FrameState* frame,
+                                 unsigned long long* keys, unsigned* ids) {
+  const unsigned i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const uint3 c = cell_of(spheres[i], grid_frame(*frame));
+  keys[i] = cell_key(c.x, c.y, c.z);
+  ids[i] = i;
+}
+
+// Grid, 2: the spheres in cell order.
+__global__ void grid_gather_kernel(const float4* spheres, const unsigned* sorted_ids, unsigned n,
+                                   float4* sorted) {
+  const unsigned k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  sorted[k] = spheres[sorted_ids[k]];
+}
+
+// The first position in [begin, n) whose key is not below `key`.
+__device__ __forceinline__ unsigned lower_bound(const unsigned long long* keys, unsigned begin,
+                                                unsigned n, unsigned long long key) {
+  unsigned end = n;
+  while (begin < end) {
+    const unsigned middle = begin + (end - begin) / 2;
+    if (keys[middle] < key) {
+      begin = middle + 1;
+    } else {
+      end = middle;
+    }
+  }
+  return begin;
+}
+
+// Grid, 3: sphere k (sorted position) against every later sphere in the neighbouring
+// cells. Cells are keyed x, then y, then z, so the neighbours with keys not below k's are
+// (x, y, z..z+1), (x, y+1, z-1..z+1) and (x+1, y-1..y+1, z-1..z+1): four runs of keys,
+// each found by a binary search; every overlapping pair is found once, from its earlier
+// sphere.
+__global__ void grid_pairs_kernel(const float4* sorted, const unsigned long long* sorted_keys,
+                                  const unsigned* sorted_ids, unsigned n, PairOutput out) {
+  const unsigned k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const float4 a = sorted[k];
+  const unsigned id = sorted_ids[k];
+  const unsigned long long key = sorted_keys[k];
+  const unsigned mask = (1u << kCellBits) - 1;
+  const unsigned x = unsigned(key >> (2 * kCellBits)), y = unsigned(key >> kCellBits) & mask,
+                 z = unsigned(key) & mask;
+  const auto run = [&](unsigned begin, unsigned long long last) {
+    for (unsigned m = begin; m < n && sorted_keys[m] <= last; ++m) {
+      if (overlap(a, sorted[m])) emit_pair(out, id, sorted_ids[m]);
+    }
+  };
+  run(k + 1, cell_key(x, y, z + 1));
+  run(lower_bound(sorted_keys, k + 1, n, cell_key(x, y + 1, z - 1)), cell_key(x, y + 1, z + 1));
+  for (unsigned dy = 0; dy < 3; ++dy) {
+    run(lower_bound(sorted_keys, k + 1, n, cell_key(x + 1, y + dy - 1, z - 1)),
+        cell_key(x + 1, y + dy - 1, z + 1));
+  }
+}
+
+}  // namespace gplanner::detail::broad_phase

@@ -40,6 +40,11 @@
 #                 (issue 21)
 #      error-time-articulated  the same for the humanoid and      error_time_articulated/
 #                 pr2_reach (config/bench/error_time_articulated.yaml)
+#      broad-phase gplan bench config/bench/broad_phase.yaml: the     broad_phase/
+#                 seed's sphere all-pairs table (64 to 320 spheres,
+#                 CPU against GPU) and the scalable GPU broad phases
+#                 up to 1,000,000 spheres (issue 23); results.md holds
+#                 the tables
 #    Every call also writes OUT_DIR/machine.txt (GPU, driver, CPU, commit, date,
 #    tables). Progress goes to stderr. The exit status is 1 when a program failed (the
 #    other tables still run). Where one command may run at most 10 minutes, split the
@@ -50,6 +55,7 @@
 #      bench/reproduce.sh OUT_DIR regression
 #      bench/reproduce.sh OUT_DIR error-time
 #      bench/reproduce.sh OUT_DIR error-time-articulated
+#      bench/reproduce.sh OUT_DIR broad-phase
 #      timeout 590 bench/reproduce.sh OUT_DIR plan   (more than 10 minutes: the runs
 #      done stay in OUT_DIR/plan_times/results.partial.csv)
 # 3. Back on the build machine: copy OUT_DIR to bench/runs/NAME/ and print the tables
@@ -88,7 +94,7 @@ mkdir -p "$1"
 out=$(cd "$1" && pwd)
 shift
 all=(gpu-tests peak collision agreement knn time-limit hostile seed-tables regression plan
-     error-time error-time-articulated)
+     error-time error-time-articulated broad-phase)
 tables=("$@")
 [ ${#tables[@]} -gt 0 ] || tables=("${all[@]}")
 for t in "${tables[@]}"; do
@@ -213,6 +219,18 @@ for t in "${tables[@]}"; do
     error-time-articulated)
       bench_config config/bench/error_time_articulated.yaml "$out/error_time_articulated" \
         || failed+=("$t")
+      ;;
+    broad-phase)
+      # Not through bench_config: here exit 3 is a failure, a method whose pairs differed
+      # from the reference's (MISMATCH lines in the log). Plots: gplan bench is run again
+      # with matplotlib, or plot_broad_phase.py on results.csv.
+      status=0
+      "$run" "$bin/gplan" bench config/bench/broad_phase.yaml -o "$out/broad_phase" \
+        --no-plots || status=$?
+      if [ "$status" -ne 0 ]; then
+        say "broad-phase: exit $status (3: a method's pairs differed from the reference's)"
+        failed+=("$t")
+      fi
       ;;
   esac
 done

@@ -18,7 +18,8 @@ class YamlReader;
 namespace gplan {
 
 struct BroadPhaseOptions {
-  // cpu-all-pairs, cpu-sort-sweep, gpu-all-pairs, gpu-sort-sweep, gpu-grid (at least one).
+  // cpu-all-pairs, cpu-sort-sweep, gpu-all-pairs, gpu-sort-sweep, gpu-grid, gpu-lbvh (at
+  // least one).
   std::vector<std::string> methods;
   // Sphere counts, each a point of every method (ascending in the tables).
   std::vector<std::uint64_t> counts;

@@ -7,8 +7,8 @@
 // frame moves them, then every method finds the frame's pairs, timed from the spheres on
 // the host to the pairs on the host (the GPU methods' transfers included). Every method's
 // pair set is compared, frame by frame, with the reference's: the first method of
-// cpu-all-pairs, cpu-sort-sweep, gpu-all-pairs, gpu-sort-sweep, gpu-grid that runs at the
-// count. One untimed warm-up frame per count (a GPU's first allocations). A method runs at
+// cpu-all-pairs, cpu-sort-sweep, gpu-all-pairs, gpu-sort-sweep, gpu-grid, gpu-lbvh that runs
+// at the count. One untimed warm-up frame per count (a GPU's first allocations). A method runs at
 // a count up to its max_count; gpu methods are left out, with a notice, where no GPU can
 // be used. See docs/bench.md, "Broad phase".
 

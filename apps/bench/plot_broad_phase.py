@@ -31,9 +31,10 @@ from matplotlib import pyplot  # noqa: E402  (after the backend is chosen)
 COLUMNS = ["count", "method", "frames", "pairs_mean", "mean_ms", "median_ms", "min_ms",
            "max_ms", "fps_mean", "speedup", "reruns", "mismatches", "note"]
 COLOURS = {"cpu-all-pairs": "#b2182b", "cpu-sort-sweep": "#e08214",
-           "gpu-all-pairs": "#2166ac", "gpu-sort-sweep": "#762a83", "gpu-grid": "#1b7837"}
+           "gpu-all-pairs": "#2166ac", "gpu-sort-sweep": "#762a83", "gpu-grid": "#1b7837",
+           "gpu-lbvh": "#01665e"}
 MARKERS = {"cpu-all-pairs": "o", "cpu-sort-sweep": "s", "gpu-all-pairs": "^",
-           "gpu-sort-sweep": "D", "gpu-grid": "v"}
+           "gpu-sort-sweep": "D", "gpu-grid": "v", "gpu-lbvh": "P"}
 SEED_COUNTS = (64, 320)
 
 

@@ -23,6 +23,7 @@ constexpr MethodName kMethodNames[] = {
     {BroadPhaseMethod::kGpuAllPairs, "gpu-all-pairs"},
     {BroadPhaseMethod::kGpuSortSweep, "gpu-sort-sweep"},
     {BroadPhaseMethod::kGpuGrid, "gpu-grid"},
+    {BroadPhaseMethod::kGpuLbvh, "gpu-lbvh"},
 };
 
 // The axis along which the centres spread most (largest variance; the lowest on ties).
@@ -69,13 +70,14 @@ bool parse_broad_phase_method(const std::string& name, BroadPhaseMethod* method)
 const std::vector<BroadPhaseMethod>& broad_phase_methods() {
   static const std::vector<BroadPhaseMethod> methods = {
       BroadPhaseMethod::kCpuAllPairs, BroadPhaseMethod::kCpuSortSweep,
-      BroadPhaseMethod::kGpuAllPairs, BroadPhaseMethod::kGpuSortSweep, BroadPhaseMethod::kGpuGrid};
+      BroadPhaseMethod::kGpuAllPairs, BroadPhaseMethod::kGpuSortSweep,
+      BroadPhaseMethod::kGpuGrid,     BroadPhaseMethod::kGpuLbvh};
   return methods;
 }
 
 bool is_gpu_method(BroadPhaseMethod method) {
   return method == BroadPhaseMethod::kGpuAllPairs || method == BroadPhaseMethod::kGpuSortSweep ||
-         method == BroadPhaseMethod::kGpuGrid;
+         method == BroadPhaseMethod::kGpuGrid || method == BroadPhaseMethod::kGpuLbvh;
 }
 
 void check_spheres(const SphereArrays& s) {

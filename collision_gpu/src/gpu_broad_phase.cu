@@ -72,6 +72,11 @@ struct GpuBroadPhase::Impl {
   DeviceBuffer<unsigned long long> d_keys64, d_sorted_keys64;  // shape [n]
   DeviceBuffer<unsigned> d_ids, d_sorted_ids;                  // shape [n]
   DeviceBuffer<float> d_low, d_high;                           // shape [n]
+  DeviceBuffer<detail::lbvh::Node> d_nodes;                    // shape [n - 1]
+  DeviceBuffer<detail::lbvh::Box> d_node_boxes;                // shape [n - 1]
+  DeviceBuffer<detail::lbvh::Box> d_leaf_boxes;                // shape [n]
+  DeviceBuffer<int> d_parents;                                 // shape [2n - 1]
+  DeviceBuffer<unsigned> d_flags;                              // shape [n - 1]
   DeviceBuffer<unsigned char> d_sort_scratch;
   DeviceBuffer<bp::FrameState> d_frame;  // shape [1]
   DeviceBuffer<uint2> d_pairs;           // shape [pair capacity]
@@ -151,6 +156,27 @@ struct GpuBroadPhase::Impl {
           d_spheres.get(), d_sorted_keys32.get(), d_sorted_ids.get(), n, d_frame.get(),
           d_sorted.get(), d_low.get(), d_high.get());
       launched("sweep gather");
+    } else if (method == BroadPhaseMethod::kGpuLbvh) {
+      d_keys32.reserve(n);
+      d_sorted_keys32.reserve(n);
+      d_nodes.reserve(n - 1);
+      d_node_boxes.reserve(n - 1);
+      d_leaf_boxes.reserve(n);
+      d_parents.reserve(2 * std::size_t(n) - 1);
+      d_flags.reserve(n - 1);
+      bp::lbvh_codes_kernel<<<blocks, bp::kBlock, 0, stream>>>(d_spheres.get(), n, d_frame.get(),
+                                                               d_keys32.get(), d_ids.get());
+      launched("lbvh codes");
+      sort(d_keys32.get(), d_sorted_keys32.get(), n, 30);
+      bp::lbvh_leaves_kernel<<<blocks, bp::kBlock, 0, stream>>>(
+          d_spheres.get(), d_sorted_ids.get(), n, d_sorted.get(), d_leaf_boxes.get());
+      launched("lbvh leaves");
+      bp::lbvh_nodes_kernel<<<blocks, bp::kBlock, 0, stream>>>(
+          d_sorted_keys32.get(), n, d_nodes.get(), d_parents.get(), d_flags.get());
+      launched("lbvh nodes");
+      bp::lbvh_refit_kernel<<<blocks, bp::kBlock, 0, stream>>>(
+          d_nodes.get(), d_parents.get(), d_leaf_boxes.get(), d_node_boxes.get(), d_flags.get(), n);
+      launched("lbvh refit");
     } else {
       d_keys64.reserve(n);
       d_sorted_keys64.reserve(n);
@@ -174,6 +200,11 @@ struct GpuBroadPhase::Impl {
       bp::sweep_kernel<<<blocks, bp::kBlock, 0, stream>>>(d_sorted.get(), d_low.get(), d_high.get(),
                                                           d_sorted_ids.get(), n, pair_output());
       launched("sweep");
+    } else if (method == BroadPhaseMethod::kGpuLbvh) {
+      bp::lbvh_pairs_kernel<<<blocks, bp::kBlock, 0, stream>>>(
+          d_nodes.get(), d_node_boxes.get(), d_leaf_boxes.get(), d_sorted.get(), d_sorted_ids.get(),
+          n, pair_output());
+      launched("lbvh pairs");
     } else {
       bp::grid_pairs_kernel<<<blocks, bp::kBlock, 0, stream>>>(
           d_sorted.get(), d_sorted_keys64.get(), d_sorted_ids.get(), n, pair_output());

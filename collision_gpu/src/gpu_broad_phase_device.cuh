@@ -1,8 +1,8 @@
 #pragma once
 // Device code of the GPU sphere broad phase (gpu_broad_phase.cu launches it): packing and
 // checking the spheres with their extents, the all-pairs tiles, the sort-and-sweep and
-// the uniform grid. Every method decides a pair with geometry::spheres_overlap; the
-// culling (sweep intervals, grid cells) is conservative by construction
+// the uniform grid and the linear BVH. Every method decides a pair with geometry::spheres_overlap;
+// the culling (sweep intervals, grid cells) is conservative by construction
 // (geometry::cull_low/cull_high, cells wider than any overlapping pair's reach).
 
 #include <cooperative_groups.h>
@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "gplanner/collision_gpu/detail/lbvh.h"
 #include "gplanner/collision_gpu/geometry/sphere_overlap.h"
 
 namespace gplanner::detail::broad_phase {
@@ -297,6 +298,86 @@ __global__ void grid_pairs_kernel(const float4* sorted, const unsigned long long
     run(lower_bound(sorted_keys, k + 1, n, cell_key(x + 1, y + dy - 1, z - 1)),
         cell_key(x + 1, y + dy - 1, z + 1));
   }
+}
+
+// LBVH, 1: each sphere's Morton code within the centres' bounds; its index as the value.
+__global__ void lbvh_codes_kernel(const float4* spheres, unsigned n, const FrameState* frame,
+                                  std::uint32_t* codes, unsigned* ids) {
+  const unsigned i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  float lo[3], size[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = from_ordered_bits(frame->low[a]);
+    size[a] = from_ordered_bits(frame->high[a]) - lo[a];
+  }
+  const float4 s = spheres[i];
+  const float c[3] = {s.x, s.y, s.z};
+  codes[i] = lbvh::morton_code(c, lo, size);
+  ids[i] = i;
+}
+
+// LBVH, 2: the spheres in Morton order and their boxes (the leaves).
+__global__ void lbvh_leaves_kernel(const float4* spheres, const unsigned* sorted_ids, unsigned n,
+                                   float4* sorted, lbvh::Box* leaf_boxes) {
+  const unsigned k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const float4 s = spheres[sorted_ids[k]];
+  sorted[k] = s;
+  leaf_boxes[k] = lbvh::sphere_box(s.x, s.y, s.z, s.w);
+}
+
+// LBVH, 3: internal node i of the radix tree, its children's parent links (internal
+// nodes at 0 .. n-2, leaves at n-1 .. 2n-2; the root's parent -1), its refit flag cleared.
+__global__ void lbvh_nodes_kernel(const std::uint32_t* sorted_codes, unsigned n, lbvh::Node* nodes,
+                                  int* parents, unsigned* flags) {
+  const unsigned i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i + 1 >= n) return;
+  const lbvh::Node node = lbvh::radix_node(sorted_codes, int(n), int(i));
+  nodes[i] = node;
+  parents[node.left >= 0 ? node.left : int(n) - 1 + ~node.left] = int(i);
+  parents[node.right >= 0 ? node.right : int(n) - 1 + ~node.right] = int(i);
+  flags[i] = 0;
+  if (i == 0) parents[0] = -1;
+}
+
+// A box another thread of this kernel wrote: read past the L1 cache.
+__device__ __forceinline__ lbvh::Box load_box(const lbvh::Box* box) {
+  lbvh::Box b;
+  for (int k = 0; k < 3; ++k) {
+    b.lo[k] = __ldcg(&box->lo[k]);
+    b.hi[k] = __ldcg(&box->hi[k]);
+  }
+  return b;
+}
+
+// LBVH, 4: the internal nodes' boxes, bottom-up: a thread per leaf climbs; at each node
+// the first of the two children to arrive stops, the second merges both boxes.
+__global__ void lbvh_refit_kernel(const lbvh::Node* nodes, const int* parents,
+                                  const lbvh::Box* leaf_boxes, lbvh::Box* node_boxes,
+                                  unsigned* flags, unsigned n) {
+  const unsigned k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  int node = parents[n - 1 + k];
+  while (node >= 0) {
+    __threadfence();  // this thread's box written before its arrival is counted
+    if (atomicAdd(&flags[node], 1u) == 0) return;
+    const lbvh::Node x = nodes[node];
+    const lbvh::Box a = x.left < 0 ? leaf_boxes[~x.left] : load_box(&node_boxes[x.left]);
+    const lbvh::Box b = x.right < 0 ? leaf_boxes[~x.right] : load_box(&node_boxes[x.right]);
+    node_boxes[node] = lbvh::merge(a, b);
+    node = parents[node];
+  }
+}
+
+// LBVH, 5: sphere k (sorted position) queries the tree for its later overlapping spheres.
+__global__ void lbvh_pairs_kernel(const lbvh::Node* nodes, const lbvh::Box* node_boxes,
+                                  const lbvh::Box* leaf_boxes, const float4* sorted,
+                                  const unsigned* sorted_ids, unsigned n, PairOutput out) {
+  const unsigned k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const unsigned id = sorted_ids[k];
+  lbvh::query_later(nodes, node_boxes, leaf_boxes, reinterpret_cast<const float*>(sorted), int(k),
+                    [&](int m) { emit_pair(out, id, sorted_ids[m]); });
 }
 
 }  // namespace gplanner::detail::broad_phase

@@ -40,7 +40,7 @@ TEST(GplanBenchBroadPhase, CiConfigurationWritesCsvTablesAndPlots) {
   EXPECT_NE(run.output.find("[3/3] 2000 spheres"), std::string::npos) << run.output;
   EXPECT_EQ(run.output.find("MISMATCH"), std::string::npos) << run.output;
 
-  // 3 counts x 5 methods; the CPU methods ran at every count, the GPU ones where there is
+  // 3 counts x 6 methods; the CPU methods ran at every count, the GPU ones where there is
   // a GPU (else a note says why not).
   std::stringstream csv(read_file(out + "/results.csv"));
   std::string line;
@@ -72,7 +72,7 @@ TEST(GplanBenchBroadPhase, CiConfigurationWritesCsvTablesAndPlots) {
       EXPECT_NE(line.find("no GPU can be used here"), std::string::npos);
     }
   }
-  EXPECT_EQ(rows, 15);
+  EXPECT_EQ(rows, 18);
   if (gpu_rows_run == 0)
     EXPECT_NE(run.output.find("left out: no GPU can be used here"), std::string::npos);
 

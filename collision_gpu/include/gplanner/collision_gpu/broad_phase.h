@@ -33,9 +33,12 @@ enum class BroadPhaseMethod {
   kGpuAllPairs,   // every pair on the GPU, tiled in shared memory: the seed's parallel method
   kGpuSortSweep,  // sweep and prune on the GPU: radix sort of the intervals, a sweep per sphere
   kGpuGrid,       // uniform grid (cells of the largest diameter) sorted by cell, 27 neighbours
+  kGpuLbvh,       // linear BVH: Morton codes, Karras' radix tree, bottom-up boxes, a query per
+                  // sphere (spheres of very different sizes)
 };
 
-// "cpu-all-pairs", "cpu-sort-sweep", "gpu-all-pairs", "gpu-sort-sweep", "gpu-grid".
+// "cpu-all-pairs", "cpu-sort-sweep", "gpu-all-pairs", "gpu-sort-sweep", "gpu-grid",
+// "gpu-lbvh".
 const char* broad_phase_method_name(BroadPhaseMethod method);
 // Parses one of the names above; false for anything else.
 bool parse_broad_phase_method(const std::string& name, BroadPhaseMethod* method);

@@ -59,7 +59,8 @@ TEST(BroadPhase, MethodNamesRoundTrip) {
     EXPECT_EQ(parsed, method);
   }
   BroadPhaseMethod parsed{};
-  EXPECT_FALSE(parse_broad_phase_method("gpu-lbvh", &parsed));
+  EXPECT_FALSE(parse_broad_phase_method("gpu-octree", &parsed));
+  EXPECT_EQ(broad_phase_methods().size(), 6u);
   EXPECT_TRUE(is_gpu_method(BroadPhaseMethod::kGpuGrid));
   EXPECT_FALSE(is_gpu_method(BroadPhaseMethod::kCpuSortSweep));
 }

@@ -1,7 +1,8 @@
 #pragma once
 // The sphere broad phase on the GPU (see broad_phase.h): all pairs (the seed's parallel
-// method), sort-and-sweep, a uniform grid sorted by cell, and a linear BVH. One call is one frame:
-// the spheres uploaded, the pairs found, the pairs downloaded. Plain C++: no CUDA headers.
+// method), sort-and-sweep, a uniform grid sorted by cell, and a linear BVH. One call is one
+// frame: the spheres uploaded, the pairs found, the pairs downloaded. Plain C++: no CUDA
+// headers.
 
 #include <cstddef>
 #include <memory>

@@ -46,6 +46,24 @@ bp::FrameState initial_frame() {
   return f;
 }
 
+// Where a frame's data lie in its transfer buffer (byte offsets): the centres (shape
+// [n, 3]) from 0, the radii (shape [n]), the frame state, the pairs (shape [capacity]).
+// The upload is everything before the pairs, the download the frame state and the pairs.
+struct IoLayout {
+  std::size_t radii, frame, pairs, bytes;
+};
+
+std::size_t aligned(std::size_t bytes) { return (bytes + 15) / 16 * 16; }
+
+IoLayout io_layout(unsigned n, std::size_t capacity) {
+  IoLayout io;
+  io.radii = 3 * std::size_t(n) * sizeof(float);
+  io.frame = aligned(io.radii + std::size_t(n) * sizeof(float));
+  io.pairs = io.frame + aligned(sizeof(bp::FrameState));
+  io.bytes = io.pairs + capacity * sizeof(uint2);
+  return io;
+}
+
 }  // namespace
 
 bool gpu_broad_phase_available(std::string* reason) {
@@ -60,14 +78,13 @@ struct GpuBroadPhase::Impl {
   cudaStream_t stream = nullptr;
   cudaEvent_t start = nullptr, stop = nullptr;
 
-  PinnedBuffer<float> h_centers;         // shape [n, 3]: staging
-  PinnedBuffer<float> h_radii;           // shape [n]
-  PinnedBuffer<bp::FrameState> h_frame;  // shape [2]: the initial one, the one read back
-  PinnedBuffer<uint2> h_pairs;           // shape [pair capacity]
-  DeviceBuffer<float> d_centers;         // shape [n, 3]
-  DeviceBuffer<float> d_radii;           // shape [n]
-  DeviceBuffer<float4> d_spheres;        // shape [n]: x, y, z, r
-  DeviceBuffer<float4> d_sorted;         // shape [n]: in sweep or cell order
+  // One frame's transfers, one upload and one download, through one buffer laid out as
+  // IoLayout says (the same on the host, page-locked, and on the device).
+  PinnedBuffer<unsigned char> h_io;
+  DeviceBuffer<unsigned char> d_io;
+  IoLayout io{};
+  DeviceBuffer<float4> d_spheres;                              // shape [n]: x, y, z, r
+  DeviceBuffer<float4> d_sorted;                               // shape [n]: in sweep or cell order
   DeviceBuffer<unsigned> d_keys32, d_sorted_keys32;            // shape [n]
   DeviceBuffer<unsigned long long> d_keys64, d_sorted_keys64;  // shape [n]
   DeviceBuffer<unsigned> d_ids, d_sorted_ids;                  // shape [n]
@@ -78,9 +95,18 @@ struct GpuBroadPhase::Impl {
   DeviceBuffer<int> d_parents;                                 // shape [2n - 1]
   DeviceBuffer<unsigned> d_flags;                              // shape [n - 1]
   DeviceBuffer<unsigned char> d_sort_scratch;
-  DeviceBuffer<bp::FrameState> d_frame;  // shape [1]
-  DeviceBuffer<uint2> d_pairs;           // shape [pair capacity]
-  std::size_t last_pairs = 0;            // the previous frame's count: what to download at once
+  std::size_t pair_capacity = 4096;  // pairs the buffer holds: the largest count seen
+  std::size_t last_pairs = 0;        // the previous frame's count: what to download at once
+
+  float* d_centers() const { return reinterpret_cast<float*>(d_io.get()); }
+  float* d_radii() const { return reinterpret_cast<float*>(d_io.get() + io.radii); }
+  bp::FrameState* d_frame() const {
+    return reinterpret_cast<bp::FrameState*>(d_io.get() + io.frame);
+  }
+  uint2* d_pairs() const { return reinterpret_cast<uint2*>(d_io.get() + io.pairs); }
+  const bp::FrameState& h_frame() const {
+    return *reinterpret_cast<const bp::FrameState*>(h_io.get() + io.frame);
+  }
 
   Impl() {
     const GpuDevice device = query_gpu_device();
@@ -92,11 +118,6 @@ struct GpuBroadPhase::Impl {
     check_cuda(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking), "stream");
     check_cuda(cudaEventCreate(&start), "event");
     check_cuda(cudaEventCreate(&stop), "event");
-    h_frame.reserve(2);
-    h_frame.get()[0] = initial_frame();
-    d_frame.reserve(1);
-    d_pairs.reserve(4096);
-    h_pairs.reserve(4096);
   }
 
   ~Impl() {
@@ -110,9 +131,7 @@ struct GpuBroadPhase::Impl {
     ++stats.kernels;
   }
 
-  bp::PairOutput pair_output() const {
-    return {d_pairs.get(), d_pairs.capacity(), &d_frame.get()->pairs};
-  }
+  bp::PairOutput pair_output() const { return {d_pairs(), pair_capacity, &d_frame()->pairs}; }
 
   template <typename Key>
   void sort(const Key* keys, Key* sorted_keys, unsigned n, int end_bit) {
@@ -128,17 +147,13 @@ struct GpuBroadPhase::Impl {
     ++stats.kernels;
   }
 
-  // Everything before the pair kernel, then the pair kernel itself (run again on overflow).
+  // Everything before the pair kernel: packing, extents, sorting, the tree.
   void prepare(BroadPhaseMethod method, unsigned n) {
     const unsigned blocks = blocks_for(n);
-    if (method == BroadPhaseMethod::kGpuAllPairs) {
-      bp::pack_kernel<false><<<blocks, bp::kBlock, 0, stream>>>(d_centers.get(), d_radii.get(), n,
-                                                                d_spheres.get(), d_frame.get());
-      launched("pack");
-      return;
-    }
-    bp::pack_kernel<true><<<blocks, bp::kBlock, 0, stream>>>(d_centers.get(), d_radii.get(), n,
-                                                             d_spheres.get(), d_frame.get());
+    if (method == BroadPhaseMethod::kGpuAllPairs) return;  // reads and checks the upload itself
+    d_spheres.reserve(n);
+    bp::pack_kernel<<<blocks, bp::kBlock, 0, stream>>>(d_centers(), d_radii(), n, d_spheres.get(),
+                                                       d_frame());
     launched("pack");
     d_sorted.reserve(n);
     d_ids.reserve(n);
@@ -148,13 +163,13 @@ struct GpuBroadPhase::Impl {
       d_sorted_keys32.reserve(n);
       d_low.reserve(n);
       d_high.reserve(n);
-      bp::sweep_keys_kernel<<<blocks, bp::kBlock, 0, stream>>>(d_spheres.get(), n, d_frame.get(),
+      bp::sweep_keys_kernel<<<blocks, bp::kBlock, 0, stream>>>(d_spheres.get(), n, d_frame(),
                                                                d_keys32.get(), d_ids.get());
       launched("sweep keys");
       sort(d_keys32.get(), d_sorted_keys32.get(), n, 32);
       bp::sweep_gather_kernel<<<blocks, bp::kBlock, 0, stream>>>(
-          d_spheres.get(), d_sorted_keys32.get(), d_sorted_ids.get(), n, d_frame.get(),
-          d_sorted.get(), d_low.get(), d_high.get());
+          d_spheres.get(), d_sorted_keys32.get(), d_sorted_ids.get(), n, d_frame(), d_sorted.get(),
+          d_low.get(), d_high.get());
       launched("sweep gather");
     } else if (method == BroadPhaseMethod::kGpuLbvh) {
       d_keys32.reserve(n);
@@ -164,7 +179,7 @@ struct GpuBroadPhase::Impl {
       d_leaf_boxes.reserve(n);
       d_parents.reserve(2 * std::size_t(n) - 1);
       d_flags.reserve(n - 1);
-      bp::lbvh_codes_kernel<<<blocks, bp::kBlock, 0, stream>>>(d_spheres.get(), n, d_frame.get(),
+      bp::lbvh_codes_kernel<<<blocks, bp::kBlock, 0, stream>>>(d_spheres.get(), n, d_frame(),
                                                                d_keys32.get(), d_ids.get());
       launched("lbvh codes");
       sort(d_keys32.get(), d_sorted_keys32.get(), n, 30);
@@ -180,7 +195,7 @@ struct GpuBroadPhase::Impl {
     } else {
       d_keys64.reserve(n);
       d_sorted_keys64.reserve(n);
-      bp::grid_keys_kernel<<<blocks, bp::kBlock, 0, stream>>>(d_spheres.get(), n, d_frame.get(),
+      bp::grid_keys_kernel<<<blocks, bp::kBlock, 0, stream>>>(d_spheres.get(), n, d_frame(),
                                                               d_keys64.get(), d_ids.get());
       launched("grid keys");
       sort(d_keys64.get(), d_sorted_keys64.get(), n, 3 * bp::kCellBits);
@@ -193,8 +208,8 @@ struct GpuBroadPhase::Impl {
   void find_pairs_kernel(BroadPhaseMethod method, unsigned n) {
     const unsigned blocks = blocks_for(n);
     if (method == BroadPhaseMethod::kGpuAllPairs) {
-      bp::all_pairs_kernel<<<dim3(blocks, blocks), bp::kBlock, 0, stream>>>(d_spheres.get(), n,
-                                                                            pair_output());
+      bp::all_pairs_kernel<<<dim3(blocks, blocks), bp::kBlock, 0, stream>>>(
+          d_centers(), d_radii(), n, d_frame(), pair_output());
       launched("all pairs");
     } else if (method == BroadPhaseMethod::kGpuSortSweep) {
       bp::sweep_kernel<<<blocks, bp::kBlock, 0, stream>>>(d_sorted.get(), d_low.get(), d_high.get(),
@@ -212,32 +227,56 @@ struct GpuBroadPhase::Impl {
     }
   }
 
-  // Downloads the frame state and the first `count` pairs.
-  void download(std::size_t count) {
-    check_cuda(cudaMemcpyAsync(h_frame.get() + 1, d_frame.get(), sizeof(bp::FrameState),
-                               cudaMemcpyDeviceToHost, stream),
-               "download the frame");
-    if (count > 0) {
-      check_cuda(cudaMemcpyAsync(h_pairs.get(), d_pairs.get(), count * sizeof(uint2),
-                                 cudaMemcpyDeviceToHost, stream),
-                 "download the pairs");
+  // Room for the inputs of n spheres and `capacity` pairs, with a clear error where the
+  // device has none.
+  void reserve_io(unsigned n, std::size_t capacity) {
+    io = io_layout(n, capacity);
+    if (io.bytes > d_io.capacity()) {
+      std::size_t free_bytes = 0, total_bytes = 0;
+      check_cuda(cudaMemGetInfo(&free_bytes, &total_bytes), "free memory");
+      if (io.bytes > free_bytes + d_io.capacity()) {
+        throw std::runtime_error("GPU broad phase: " + std::to_string(capacity) + " pairs (" +
+                                 std::to_string((capacity * sizeof(uint2)) >> 20) +
+                                 " MiB) do not fit the " + std::to_string(free_bytes >> 20) +
+                                 " MiB free on the device; use fewer or smaller spheres");
+      }
     }
-    check_cuda(cudaStreamSynchronize(stream), "the frame's kernels");
+    d_io.reserve(io.bytes);
+    h_io.reserve(io.bytes);
   }
 
-  // The pair buffers grown to `count`, with a clear error where the device has no room.
-  void grow_pairs(std::size_t count) {
-    std::size_t free_bytes = 0, total_bytes = 0;
-    check_cuda(cudaMemGetInfo(&free_bytes, &total_bytes), "free memory");
-    const std::size_t bytes = count * sizeof(uint2);
-    if (bytes > free_bytes + d_pairs.capacity() * sizeof(uint2)) {
-      throw std::runtime_error("GPU broad phase: " + std::to_string(count) + " pairs (" +
-                               std::to_string(bytes >> 20) + " MiB) do not fit the " +
-                               std::to_string(free_bytes >> 20) +
-                               " MiB free on the device; use fewer or smaller spheres");
+  // One attempt at the frame with the pair buffer at `pair_capacity`: upload, kernels,
+  // download of the frame state and of the pairs where they fit. Returns the pairs found
+  // (more than pair_capacity: the buffer overflowed, and only its part was kept).
+  std::size_t run_frame(BroadPhaseMethod method, const SphereArrays& s) {
+    const unsigned n = static_cast<unsigned>(s.n);
+    reserve_io(n, pair_capacity);
+    // Staged in page-locked memory, so that the one upload runs at the bus's speed.
+    std::memcpy(h_io.get(), s.centers, 3 * std::size_t(n) * sizeof(float));
+    std::memcpy(h_io.get() + io.radii, s.radii, std::size_t(n) * sizeof(float));
+    const bp::FrameState initial = initial_frame();
+    std::memcpy(h_io.get() + io.frame, &initial, sizeof initial);
+    check_cuda(cudaMemcpyAsync(d_io.get(), h_io.get(), io.pairs, cudaMemcpyHostToDevice, stream),
+               "upload the spheres");
+    prepare(method, n);
+    find_pairs_kernel(method, n);
+    // Frames follow each other closely: the frame state and as many pairs as the last
+    // frame had (and a margin) come down at once, the rest only where there were more.
+    const std::size_t guess =
+        std::min<std::size_t>(pair_capacity, last_pairs + last_pairs / 4 + 1024);
+    check_cuda(cudaMemcpyAsync(h_io.get() + io.frame, d_io.get() + io.frame,
+                               io.pairs - io.frame + guess * sizeof(uint2), cudaMemcpyDeviceToHost,
+                               stream),
+               "download the pairs");
+    check_cuda(cudaStreamSynchronize(stream), "the frame's kernels");
+    const std::size_t count = h_frame().pairs;
+    if (count > guess && count <= pair_capacity) {
+      check_cuda(cudaMemcpyAsync(h_io.get() + io.pairs + guess * sizeof(uint2),
+                                 d_io.get() + io.pairs + guess * sizeof(uint2),
+                                 (count - guess) * sizeof(uint2), cudaMemcpyDeviceToHost, stream),
+                 "download the pairs");
     }
-    d_pairs.reserve(count);
-    h_pairs.reserve(count);
+    return count;
   }
 
   void find_pairs(BroadPhaseMethod method, const SphereArrays& s, std::vector<SpherePair>* pairs) {
@@ -254,7 +293,7 @@ struct GpuBroadPhase::Impl {
     if (method == BroadPhaseMethod::kGpuAllPairs && blocks_for(n) > 65535) {
       throw std::invalid_argument("GPU broad phase: gpu-all-pairs takes at most " +
                                   std::to_string(65535 * bp::kBlock) +
-                                  " spheres; use gpu-grid or gpu-sort-sweep");
+                                  " spheres; use gpu-grid, gpu-lbvh or gpu-sort-sweep");
     }
     stats = GpuBroadPhaseStats{};
     pairs->clear();
@@ -263,65 +302,33 @@ struct GpuBroadPhase::Impl {
       return;
     }
     check_cuda(cudaEventRecord(start, stream), "event");
-    // Staged through page-locked memory, so that the uploads run at the bus's speed.
-    h_centers.reserve(3 * std::size_t(n));
-    h_radii.reserve(n);
-    std::memcpy(h_centers.get(), s.centers, 3 * std::size_t(n) * sizeof(float));
-    std::memcpy(h_radii.get(), s.radii, std::size_t(n) * sizeof(float));
-    d_centers.reserve(3 * std::size_t(n));
-    d_radii.reserve(n);
-    d_spheres.reserve(n);
-    check_cuda(cudaMemcpyAsync(d_centers.get(), h_centers.get(), 3 * std::size_t(n) * sizeof(float),
-                               cudaMemcpyHostToDevice, stream),
-               "upload the centres");
-    check_cuda(cudaMemcpyAsync(d_radii.get(), h_radii.get(), std::size_t(n) * sizeof(float),
-                               cudaMemcpyHostToDevice, stream),
-               "upload the radii");
-    check_cuda(cudaMemcpyAsync(d_frame.get(), h_frame.get(), sizeof(bp::FrameState),
-                               cudaMemcpyHostToDevice, stream),
-               "upload the frame state");
-    prepare(method, n);
-    find_pairs_kernel(method, n);
-    // Frames follow each other closely: download as many pairs as the last one had (and
-    // a margin) at once, the rest only where there were more.
-    const std::size_t guess =
-        std::min<std::size_t>(d_pairs.capacity(), last_pairs + last_pairs / 4 + 1024);
-    download(guess);
-    const bp::FrameState& frame = h_frame.get()[1];
+    std::size_t count = run_frame(method, s);
+    if (h_frame().bad == bp::kNoBadSphere && count > pair_capacity) {
+      // Overflow: the buffer grows to the exact count and the frame runs again.
+      pair_capacity = count;
+      ++stats.reruns;
+      const std::size_t again = run_frame(method, s);
+      if (again != count) {
+        throw std::runtime_error("GPU broad phase: the pair kernel found " + std::to_string(count) +
+                                 " pairs, then " + std::to_string(again) + " (a bug)");
+      }
+    }
+    check_cuda(cudaEventRecord(stop, stream), "event");
+    check_cuda(cudaEventSynchronize(stop), "the frame");
+    const bp::FrameState& frame = h_frame();
     if (frame.bad != bp::kNoBadSphere) {
       check_spheres(s);  // names the sphere and says what is wrong
       throw std::invalid_argument("GPU broad phase: sphere " + std::to_string(frame.bad) +
                                   " is not finite or has a negative radius");
     }
-    std::size_t count = frame.pairs;
-    if (count > d_pairs.capacity()) {
-      // Overflow: the buffer grows to the exact count and the pair kernel runs again.
-      grow_pairs(count);
-      check_cuda(cudaMemsetAsync(&d_frame.get()->pairs, 0, sizeof(unsigned long long), stream),
-                 "reset the pair count");
-      find_pairs_kernel(method, n);
-      ++stats.reruns;
-      download(count);
-      if (h_frame.get()[1].pairs != count) {
-        throw std::runtime_error("GPU broad phase: the pair kernel found " +
-                                 std::to_string(h_frame.get()[1].pairs) + " pairs, then " +
-                                 std::to_string(count) + " (a bug)");
-      }
-    } else if (count > guess) {
-      check_cuda(cudaMemcpyAsync(h_pairs.get() + guess, d_pairs.get() + guess,
-                                 (count - guess) * sizeof(uint2), cudaMemcpyDeviceToHost, stream),
-                 "download the pairs");
-    }
-    check_cuda(cudaEventRecord(stop, stream), "event");
-    check_cuda(cudaEventSynchronize(stop), "the frame");
     pairs->resize(count);
-    if (count > 0) std::memcpy(pairs->data(), h_pairs.get(), count * sizeof(uint2));
+    if (count > 0) std::memcpy(pairs->data(), h_io.get() + io.pairs, count * sizeof(uint2));
     last_pairs = count;
     float ms = 0;
     check_cuda(cudaEventElapsedTime(&ms, start, stop), "event time");
     stats.milliseconds = ms;
     stats.pairs = count;
-    stats.pair_capacity = d_pairs.capacity();
+    stats.pair_capacity = pair_capacity;
     if (method == BroadPhaseMethod::kGpuSortSweep) stats.sweep_axis = bp::sweep_axis(frame, n);
     if (method == BroadPhaseMethod::kGpuGrid) stats.cell_size = bp::grid_frame(frame).cell;
   }

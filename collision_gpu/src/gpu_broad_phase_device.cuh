@@ -91,56 +91,71 @@ __device__ __forceinline__ unsigned warp_max(unsigned v) {
   return v;
 }
 
-// Packs centres [n, 3] and radii [n] into spheres [n] (x, y, z, r); a sphere that is not
-// finite, or has a negative radius, is recorded (the smallest index) and replaced by a
-// point at the origin so that the rest of the frame stays well defined. With `Extents`,
-// also accumulates the centres' sums, squares, bounds and the largest radius.
-template <bool Extents>
+// A sphere the broad phase takes: finite, with a radius of 0 or more.
+__device__ __forceinline__ bool valid_sphere(float4 s) {
+  return isfinite(s.x) && isfinite(s.y) && isfinite(s.z) && isfinite(s.w) && s.w >= 0.f;
+}
+
+__device__ __forceinline__ float4 load_sphere(const float* centers, const float* radii,
+                                              unsigned i) {
+  return make_float4(centers[3 * i], centers[3 * i + 1], centers[3 * i + 2], radii[i]);
+}
+
+// Packs centres [n, 3] and radii [n] into spheres [n] (x, y, z, r) and accumulates the
+// centres' sums, squares and bounds and the largest radius. A sphere that is not valid is
+// recorded (the smallest index) and replaced by a point at the origin, so that the rest
+// of the frame stays well defined (the frame is then refused).
 __global__ void pack_kernel(const float* centers, const float* radii, unsigned n, float4* spheres,
                             FrameState* frame) {
   const unsigned i = blockIdx.x * blockDim.x + threadIdx.x;
   float4 s = make_float4(0.f, 0.f, 0.f, 0.f);
   const bool valid = i < n;
   if (valid) {
-    s = make_float4(centers[3 * i], centers[3 * i + 1], centers[3 * i + 2], radii[i]);
-    if (!isfinite(s.x) || !isfinite(s.y) || !isfinite(s.z) || !isfinite(s.w) || !(s.w >= 0.f)) {
+    s = load_sphere(centers, radii, i);
+    if (!valid_sphere(s)) {
       atomicMin(&frame->bad, (unsigned long long)i);
       s = make_float4(0.f, 0.f, 0.f, 0.f);
     }
     spheres[i] = s;
   }
-  if constexpr (Extents) {
-    const float c[3] = {s.x, s.y, s.z};
-    const bool lane0 = (threadIdx.x & 31) == 0;
-    for (int a = 0; a < 3; ++a) {
-      const double sum = warp_sum(valid ? double(c[a]) : 0.0);
-      const double square = warp_sum(valid ? double(c[a]) * double(c[a]) : 0.0);
-      const unsigned low = warp_min(valid ? ordered_bits(c[a]) : ~0u);
-      const unsigned high = warp_max(valid ? ordered_bits(c[a]) : 0u);
-      if (lane0) {
-        atomicAdd(&frame->sum[a], sum);
-        atomicAdd(&frame->square[a], square);
-        atomicMin(&frame->low[a], low);
-        atomicMax(&frame->high[a], high);
-      }
+  const float c[3] = {s.x, s.y, s.z};
+  const bool lane0 = (threadIdx.x & 31) == 0;
+  for (int a = 0; a < 3; ++a) {
+    const double sum = warp_sum(valid ? double(c[a]) : 0.0);
+    const double square = warp_sum(valid ? double(c[a]) * double(c[a]) : 0.0);
+    const unsigned low = warp_min(valid ? ordered_bits(c[a]) : ~0u);
+    const unsigned high = warp_max(valid ? ordered_bits(c[a]) : 0u);
+    if (lane0) {
+      atomicAdd(&frame->sum[a], sum);
+      atomicAdd(&frame->square[a], square);
+      atomicMin(&frame->low[a], low);
+      atomicMax(&frame->high[a], high);
     }
-    const unsigned radius = warp_max(valid ? ordered_bits(s.w) : 0u);
-    if (lane0) atomicMax(&frame->radius_max, radius);
   }
+  const unsigned radius = warp_max(valid ? ordered_bits(s.w) : 0u);
+  if (lane0) atomicMax(&frame->radius_max, radius);
 }
 
-// All pairs, tiled: block (bi, bj), bj >= bi, tests its 256 spheres i of tile bi against
-// the 256 spheres j of tile bj held in shared memory, j > i.
-__global__ void all_pairs_kernel(const float4* spheres, unsigned n, PairOutput out) {
+// All pairs, tiled, straight from the upload: block (bi, bj), bj >= bi, tests its 256
+// spheres i of tile bi against the 256 spheres j of tile bj held in shared memory, j > i.
+// The diagonal blocks check their tile's spheres (a frame with an invalid one is refused,
+// whatever pairs it gave).
+__global__ void all_pairs_kernel(const float* centers, const float* radii, unsigned n,
+                                 FrameState* frame, PairOutput out) {
   const unsigned bi = blockIdx.x, bj = blockIdx.y;
   if (bj < bi) return;
   __shared__ float4 tile[kBlock];
   const unsigned j0 = bj * kBlock;
-  if (j0 + threadIdx.x < n) tile[threadIdx.x] = spheres[j0 + threadIdx.x];
+  if (j0 + threadIdx.x < n) {
+    const float4 s = load_sphere(centers, radii, j0 + threadIdx.x);
+    tile[threadIdx.x] = s;
+    if (bi == bj && !valid_sphere(s))
+      atomicMin(&frame->bad, (unsigned long long)(j0 + threadIdx.x));
+  }
   __syncthreads();
   const unsigned i = bi * kBlock + threadIdx.x;
   if (i >= n) return;
-  const float4 a = spheres[i];
+  const float4 a = bi == bj ? tile[threadIdx.x] : load_sphere(centers, radii, i);
   const unsigned end = min(unsigned(kBlock), n - j0);
   for (unsigned t = bi == bj ? threadIdx.x + 1 : 0; t < end; ++t) {
     if (overlap(a, tile[t])) emit_pair(out, i, j0 + t);

@@ -23,7 +23,7 @@ struct BroadPhasePoint {
   double mean_ms = 0, median_ms = 0, min_ms = 0, max_ms = 0;
   double fps_mean = 0;       // the mean of the frames' 1 / time, as the seed averages FPS readings
   double speedup = -1;       // fps_mean over cpu-all-pairs' at this count (-1: it did not run)
-  long long reruns = 0;      // GPU pair kernels run again after their buffer overflowed
+  long long reruns = 0;      // GPU frames run again after the pair buffer overflowed
   long long mismatches = 0;  // frames whose pair set differs from the reference's
   std::string note;          // why it did not run; which method was the reference
 

@@ -22,7 +22,7 @@ struct GpuBroadPhaseStats {
   double milliseconds = 0;        // on the device, from the upload to the last download
   std::size_t pairs = 0;          // pairs found
   std::size_t pair_capacity = 0;  // the device pair buffer's size when the call ended
-  int reruns = 0;                 // pair kernels run again, the buffer having overflowed
+  int reruns = 0;                 // frames run again, the pair buffer having overflowed
   int kernels = 0;                // kernel launches (sorts counted as one)
   int sweep_axis = -1;            // gpu-sort-sweep: 0, 1 or 2 (the axis of largest variance)
   double cell_size = 0;           // gpu-grid: the cell's side
@@ -38,8 +38,8 @@ class GpuBroadPhase {
   GpuBroadPhase& operator=(const GpuBroadPhase&) = delete;
 
   // The pairs of `spheres` (host arrays) by a GPU method into `pairs` (host; replaced, in
-  // an order of the method's own). The pair buffer on the device grows to the exact count
-  // and the pair kernel runs again when it overflows: no pair is ever dropped. Throws
+  // an order of the method's own). When the pair buffer on the device overflows, it grows
+  // to the exact count and the frame runs again: no pair is ever dropped. Throws
   // std::invalid_argument for a CPU method or bad spheres (check_spheres' rules, checked
   // on the device), std::runtime_error for a CUDA error or pairs beyond device memory.
   // Not thread safe: one call at a time per object.

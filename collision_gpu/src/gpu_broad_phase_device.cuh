@@ -1,9 +1,10 @@
 #pragma once
 // Device code of the GPU sphere broad phase (gpu_broad_phase.cu launches it): packing and
-// checking the spheres with their extents, the all-pairs tiles, the sort-and-sweep and
-// the uniform grid and the linear BVH. Every method decides a pair with geometry::spheres_overlap;
-// the culling (sweep intervals, grid cells) is conservative by construction
-// (geometry::cull_low/cull_high, cells wider than any overlapping pair's reach).
+// checking the spheres with their extents, the all-pairs tiles, the sort-and-sweep, the
+// uniform grid and the linear BVH. Every method decides a pair with
+// geometry::spheres_overlap; the culling (sweep intervals, grid cells, BVH boxes) is
+// conservative by construction (geometry::cull_low/cull_high, cells wider than any
+// overlapping pair's reach).
 
 #include <cooperative_groups.h>
 #include <cuda_runtime.h>
@@ -98,7 +99,8 @@ __device__ __forceinline__ bool valid_sphere(float4 s) {
 
 __device__ __forceinline__ float4 load_sphere(const float* centers, const float* radii,
                                               unsigned i) {
-  return make_float4(centers[3 * i], centers[3 * i + 1], centers[3 * i + 2], radii[i]);
+  const float* c = centers + 3 * std::size_t(i);
+  return make_float4(c[0], c[1], c[2], radii[i]);
 }
 
 // Packs centres [n, 3] and radii [n] into spheres [n] (x, y, z, r) and accumulates the

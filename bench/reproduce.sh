@@ -7,7 +7,7 @@
 #      cmake -B build -DCMAKE_CUDA_ARCHITECTURES=90 && cmake --build build -j
 #      bench/reproduce.sh --bundle [BUILD_DIR]        (BUILD_DIR: default build)
 #    --bundle packs into .gpu/ the programs the tables use (BUILD_DIR/apps/gplan,
-#    BUILD_DIR/bench/gplanner_{knn_bench,peak_rates,thread_scaling},
+#    BUILD_DIR/bench/gplanner_{knn_bench,peak_rates,thread_scaling,link_broad_phase},
 #    BUILD_DIR/tests/gplanner_{tests,stability_tests}) with the real PR2 and Talos
 #    data from ../shared/data, and writes the commit to .gpu/commit ("-dirty" when
 #    tracked files differ from it). .gpu/ must travel with the checkout.
@@ -44,7 +44,10 @@
 #                 seed's sphere all-pairs table (64 to 320 spheres,
 #                 CPU against GPU) and the scalable GPU broad phases
 #                 up to 1,000,000 spheres (issue 23); results.md holds
-#                 the tables
+#                 the tables; and the planner's sizes (50 link        link_broad_phase.jsonl
+#                 spheres, 1,000 checked pairs, 1,000 to 10,000
+#                 obstacle boxes): masked pair tests against
+#                 sort-and-sweep (gplanner_link_broad_phase)
 #    Every call also writes OUT_DIR/machine.txt (GPU, driver, CPU, commit, date,
 #    tables). Progress goes to stderr. The exit status is 1 when a program failed (the
 #    other tables still run). Where one command may run at most 10 minutes, split the
@@ -73,7 +76,8 @@ if [ "${1:-}" = --bundle ]; then
   build=${2:-build}
   cd "$root"
   programs=(apps/gplan bench/gplanner_knn_bench
-            bench/gplanner_peak_rates bench/gplanner_thread_scaling tests/gplanner_tests
+            bench/gplanner_peak_rates bench/gplanner_thread_scaling
+            bench/gplanner_link_broad_phase tests/gplanner_tests
             tests/gplanner_stability_tests)
   # gpu-bundle takes its options before the programs.
   ../shared/tools/gpu-bundle -d ../shared/data/moveit_resources_pr2_description \
@@ -231,6 +235,8 @@ for t in "${tables[@]}"; do
         say "broad-phase: exit $status (3: a method's pairs differed from the reference's)"
         failed+=("$t")
       fi
+      "$run" "$bin/gplanner_link_broad_phase" > "$out/link_broad_phase.jsonl" \
+        || failed+=("$t (link_broad_phase)")
       ;;
   esac
 done

@@ -198,7 +198,7 @@ struct GpuBroadPhase::Impl {
       bp::grid_keys_kernel<<<blocks, bp::kBlock, 0, stream>>>(d_spheres.get(), n, d_frame(),
                                                               d_keys64.get(), d_ids.get());
       launched("grid keys");
-      sort(d_keys64.get(), d_sorted_keys64.get(), n, 3 * bp::kCellBits);
+      sort(d_keys64.get(), d_sorted_keys64.get(), n, 3 * detail::grid::kCellBits);
       bp::grid_gather_kernel<<<blocks, bp::kBlock, 0, stream>>>(d_spheres.get(), d_sorted_ids.get(),
                                                                 n, d_sorted.get());
       launched("grid gather");

@@ -13,6 +13,7 @@
 #include <cstring>
 
 #include "gplanner/collision_gpu/detail/lbvh.h"
+#include "gplanner/collision_gpu/detail/uniform_grid.h"
 #include "gplanner/collision_gpu/geometry/sphere_overlap.h"
 
 namespace gplanner::detail::broad_phase {
@@ -21,13 +22,6 @@ namespace cg = cooperative_groups;
 
 constexpr int kBlock = 256;
 constexpr unsigned long long kNoBadSphere = ~0ull;
-// Grid cells per axis at most (cells are widened where the spheres' spread needs more):
-// cell coordinates 1 .. 2^20 + 1, and their neighbours, fit 21 bits; a key is 63 bits.
-constexpr double kMaxCellsPerAxis = double(1 << 20);
-constexpr int kCellBits = 21;
-// Cells are this much wider than the largest diameter: a pair the rule accepts is at most
-// (r_a + r_b)(1 + 4 2^-24) apart along an axis, so it lies in neighbouring cells.
-constexpr double kCellSlack = 1e-4;
 
 // A float's bits, ordered as the floats are (for atomicMin/Max and radix sort keys).
 __device__ __forceinline__ unsigned ordered_bits(float f) {
@@ -220,40 +214,15 @@ __global__ void sweep_kernel(const float4* sorted, const float* low, const float
   }
 }
 
-// The uniform grid: the lowest corner of the centres and the cell's side, the same in
-// every thread (and on the host, from the frame read back).
-struct GridFrame {
-  double origin[3];
-  double cell;
-};
-
-__host__ __device__ inline GridFrame grid_frame(const FrameState& frame) {
-  GridFrame g{};
-  double widest = 0;
+// The uniform grid of the frame's centres and radii, the same in every thread (and on the
+// host, from the frame read back).
+__host__ __device__ inline grid::GridFrame grid_frame(const FrameState& frame) {
+  float low[3], high[3];
   for (int a = 0; a < 3; ++a) {
-    g.origin[a] = from_ordered_bits(frame.low[a]);
-    widest = fmax(widest, double(from_ordered_bits(frame.high[a])) - g.origin[a]);
+    low[a] = from_ordered_bits(frame.low[a]);
+    high[a] = from_ordered_bits(frame.high[a]);
   }
-  const double radius = from_ordered_bits(frame.radius_max);
-  g.cell =
-      fmax(2 * radius * (1 + kCellSlack) + 4 * geometry::kCullFloor, widest / kMaxCellsPerAxis);
-  if (!(g.cell > 0)) g.cell = 1;  // every sphere a point, all at one place
-  return g;
-}
-
-__device__ __forceinline__ unsigned long long cell_key(unsigned x, unsigned y, unsigned z) {
-  return (static_cast<unsigned long long>(x) << (2 * kCellBits)) |
-         (static_cast<unsigned long long>(y) << kCellBits) | z;
-}
-
-// The cell of a centre, each coordinate from 1 (so that its neighbours are never below 0).
-__device__ __forceinline__ uint3 cell_of(float4 s, const GridFrame& g) {
-  const double inverse = 1.0 / g.cell;
-  const auto q = [&](float c, int a) {
-    return 1u + static_cast<unsigned>(
-                    fmin(floor((double(c) - g.origin[a]) * inverse), kMaxCellsPerAxis));
-  };
-  return make_uint3(q(s.x, 0), q(s.y, 1), q(s.z, 2));
+  return grid::make_grid_frame(low, high, from_ordered_bits(frame.radius_max));
 }
 
 // Grid, 1: each sphere's cell key; its index as the value.
@@ -261,8 +230,8 @@ __global__ void grid_keys_kernel(const float4* spheres, unsigned n, const FrameS
                                  unsigned long long* keys, unsigned* ids) {
   const unsigned i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
-  const uint3 c = cell_of(spheres[i], grid_frame(*frame));
-  keys[i] = cell_key(c.x, c.y, c.z);
+  const float4 s = spheres[i];
+  keys[i] = grid::cell_key_of(s.x, s.y, s.z, grid_frame(*frame));
   ids[i] = i;
 }
 
@@ -274,47 +243,14 @@ __global__ void grid_gather_kernel(const float4* spheres, const unsigned* sorted
   sorted[k] = spheres[sorted_ids[k]];
 }
 
-// The first position in [begin, n) whose key is not below `key`.
-__device__ __forceinline__ unsigned lower_bound(const unsigned long long* keys, unsigned begin,
-                                                unsigned n, unsigned long long key) {
-  unsigned end = n;
-  while (begin < end) {
-    const unsigned middle = begin + (end - begin) / 2;
-    if (keys[middle] < key) {
-      begin = middle + 1;
-    } else {
-      end = middle;
-    }
-  }
-  return begin;
-}
-
-// Grid, 3: sphere k (sorted position) against every later sphere in the neighbouring
-// cells. Cells are keyed x, then y, then z, so the neighbours with keys not below k's are
-// (x, y, z..z+1), (x, y+1, z-1..z+1) and (x+1, y-1..y+1, z-1..z+1): four runs of keys,
-// each found by a binary search; every overlapping pair is found once, from its earlier
-// sphere.
+// Grid, 3: sphere k (sorted position) against the later spheres of its neighbouring cells.
 __global__ void grid_pairs_kernel(const float4* sorted, const unsigned long long* sorted_keys,
                                   const unsigned* sorted_ids, unsigned n, PairOutput out) {
   const unsigned k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
-  const float4 a = sorted[k];
   const unsigned id = sorted_ids[k];
-  const unsigned long long key = sorted_keys[k];
-  const unsigned mask = (1u << kCellBits) - 1;
-  const unsigned x = unsigned(key >> (2 * kCellBits)), y = unsigned(key >> kCellBits) & mask,
-                 z = unsigned(key) & mask;
-  const auto run = [&](unsigned begin, unsigned long long last) {
-    for (unsigned m = begin; m < n && sorted_keys[m] <= last; ++m) {
-      if (overlap(a, sorted[m])) emit_pair(out, id, sorted_ids[m]);
-    }
-  };
-  run(k + 1, cell_key(x, y, z + 1));
-  run(lower_bound(sorted_keys, k + 1, n, cell_key(x, y + 1, z - 1)), cell_key(x, y + 1, z + 1));
-  for (unsigned dy = 0; dy < 3; ++dy) {
-    run(lower_bound(sorted_keys, k + 1, n, cell_key(x + 1, y + dy - 1, z - 1)),
-        cell_key(x + 1, y + dy - 1, z + 1));
-  }
+  grid::query_later(reinterpret_cast<const float*>(sorted), sorted_keys, n, k,
+                    [&](unsigned m) { emit_pair(out, id, sorted_ids[m]); });
 }
 
 // LBVH, 1: each sphere's Morton code within the centres' bounds; its index as the value.

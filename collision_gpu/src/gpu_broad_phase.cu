@@ -5,6 +5,7 @@
 #include <cuda_runtime.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <cub/device/device_radix_sort.cuh>
 #include <stdexcept>
@@ -76,7 +77,6 @@ struct GpuBroadPhase::Impl {
   std::string device_name;
   GpuBroadPhaseStats stats;
   cudaStream_t stream = nullptr;
-  cudaEvent_t start = nullptr, stop = nullptr;
 
   // One frame's transfers, one upload and one download, through one buffer laid out as
   // IoLayout says (the same on the host, page-locked, and on the device).
@@ -116,13 +116,9 @@ struct GpuBroadPhase::Impl {
     }
     device_name = device.name;
     check_cuda(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking), "stream");
-    check_cuda(cudaEventCreate(&start), "event");
-    check_cuda(cudaEventCreate(&stop), "event");
   }
 
   ~Impl() {
-    if (start) cudaEventDestroy(start);
-    if (stop) cudaEventDestroy(stop);
     if (stream) cudaStreamDestroy(stream);
   }
 
@@ -301,7 +297,7 @@ struct GpuBroadPhase::Impl {
       check_spheres(s);  // nothing to launch: checked here
       return;
     }
-    check_cuda(cudaEventRecord(start, stream), "event");
+    const auto start = std::chrono::steady_clock::now();
     std::size_t count = run_frame(method, s);
     if (h_frame().bad == bp::kNoBadSphere && count > pair_capacity) {
       // Overflow: the buffer grows to the exact count and the frame runs again.
@@ -313,8 +309,7 @@ struct GpuBroadPhase::Impl {
                                  " pairs, then " + std::to_string(again) + " (a bug)");
       }
     }
-    check_cuda(cudaEventRecord(stop, stream), "event");
-    check_cuda(cudaEventSynchronize(stop), "the frame");
+    check_cuda(cudaStreamSynchronize(stream), "the frame");
     const bp::FrameState& frame = h_frame();
     if (frame.bad != bp::kNoBadSphere) {
       check_spheres(s);  // names the sphere and says what is wrong
@@ -324,9 +319,8 @@ struct GpuBroadPhase::Impl {
     pairs->resize(count);
     if (count > 0) std::memcpy(pairs->data(), h_io.get() + io.pairs, count * sizeof(uint2));
     last_pairs = count;
-    float ms = 0;
-    check_cuda(cudaEventElapsedTime(&ms, start, stop), "event time");
-    stats.milliseconds = ms;
+    stats.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     stats.pairs = count;
     stats.pair_capacity = pair_capacity;
     if (method == BroadPhaseMethod::kGpuSortSweep) stats.sweep_axis = bp::sweep_axis(frame, n);

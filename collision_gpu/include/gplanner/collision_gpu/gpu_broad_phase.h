@@ -19,7 +19,7 @@ bool gpu_broad_phase_available(std::string* reason = nullptr);
 
 // What the last find_pairs() did.
 struct GpuBroadPhaseStats {
-  double milliseconds = 0;        // on the device, from the upload to the last download
+  double milliseconds = 0;        // the call's time, spheres on the host to pairs on the host
   std::size_t pairs = 0;          // pairs found
   std::size_t pair_capacity = 0;  // the device pair buffer's size when the call ended
   int reruns = 0;                 // frames run again, the pair buffer having overflowed

@@ -54,6 +54,9 @@ struct IoLayout {
   std::size_t radii, frame, pairs, bytes;
 };
 
+// Large uploads go in chunks of this many bytes (staging and transfer overlapping).
+constexpr std::size_t kUploadChunk = std::size_t(1) << 20;
+
 std::size_t aligned(std::size_t bytes) { return (bytes + 15) / 16 * 16; }
 
 IoLayout io_layout(unsigned n, std::size_t capacity) {
@@ -241,19 +244,42 @@ struct GpuBroadPhase::Impl {
     h_io.reserve(io.bytes);
   }
 
+  // Bytes [at, at + bytes) of the transfer buffer to the device.
+  void upload(std::size_t at, std::size_t bytes) {
+    check_cuda(
+        cudaMemcpyAsync(d_io.get() + at, h_io.get() + at, bytes, cudaMemcpyHostToDevice, stream),
+        "upload the spheres");
+  }
+
+  // `bytes` from `source` staged at `at` and uploaded, a chunk at a time.
+  void stage_and_upload(std::size_t at, const void* source, std::size_t bytes) {
+    for (std::size_t done = 0; done < bytes; done += kUploadChunk) {
+      const std::size_t part = std::min(kUploadChunk, bytes - done);
+      std::memcpy(h_io.get() + at + done, static_cast<const unsigned char*>(source) + done, part);
+      upload(at + done, part);
+    }
+  }
+
   // One attempt at the frame with the pair buffer at `pair_capacity`: upload, kernels,
   // download of the frame state and of the pairs where they fit. Returns the pairs found
   // (more than pair_capacity: the buffer overflowed, and only its part was kept).
   std::size_t run_frame(BroadPhaseMethod method, const SphereArrays& s) {
     const unsigned n = static_cast<unsigned>(s.n);
     reserve_io(n, pair_capacity);
-    // Staged in page-locked memory, so that the one upload runs at the bus's speed.
-    std::memcpy(h_io.get(), s.centers, 3 * std::size_t(n) * sizeof(float));
-    std::memcpy(h_io.get() + io.radii, s.radii, std::size_t(n) * sizeof(float));
+    // Staged in page-locked memory, so that the uploads run at the bus's speed: one upload
+    // for a small frame; a large one a chunk at a time, each chunk's upload overlapping the
+    // staging of the next.
     const bp::FrameState initial = initial_frame();
     std::memcpy(h_io.get() + io.frame, &initial, sizeof initial);
-    check_cuda(cudaMemcpyAsync(d_io.get(), h_io.get(), io.pairs, cudaMemcpyHostToDevice, stream),
-               "upload the spheres");
+    if (io.pairs <= kUploadChunk) {
+      std::memcpy(h_io.get(), s.centers, 3 * std::size_t(n) * sizeof(float));
+      std::memcpy(h_io.get() + io.radii, s.radii, std::size_t(n) * sizeof(float));
+      upload(0, io.pairs);
+    } else {
+      stage_and_upload(0, s.centers, 3 * std::size_t(n) * sizeof(float));
+      stage_and_upload(io.radii, s.radii, std::size_t(n) * sizeof(float));
+      upload(io.frame, sizeof initial);
+    }
     prepare(method, n);
     find_pairs_kernel(method, n);
     // Frames follow each other closely: the frame state and as many pairs as the last

@@ -254,7 +254,10 @@ int run_broad_phase_study(const BenchConfig& config, const std::string& dir, boo
   fs::remove(partial);
   std::cout << table.str() << std::flush;
   std::cerr << "results: " << dir << "\n";
-  if (plots) {
+  const bool any_ran =
+      std::any_of(points.begin(), points.end(), [](const BroadPhasePoint& p) { return p.ran(); });
+  if (plots && !any_ran) std::cerr << "notice: no plots: no method ran\n";
+  if (plots && any_ran) {
     std::string why;
     const std::string plot_dir = (fs::path(dir) / "plots").string();
     if (draw_broad_phase_plots(results, plot_dir, &why)) {

@@ -13,6 +13,7 @@
 #include "bench/bench_record.h"
 #include "bench/bench_runner.h"
 #include "bench/bench_summary.h"
+#include "bench/broad_phase_study.h"
 #include "bench/error_time_study.h"
 #include "bench/ompl_log.h"
 #include "command_line.h"
@@ -167,11 +168,11 @@ int run_bench(int argc, char** argv) {
   if (!save.empty()) outputs.push_back({"--save-baseline", save});
   gplanner::check_output_paths(outputs, inputs);
   const BenchConfig config = load_bench_config(config_file);
-  if (config.kind == "error-time") {
+  if (config.kind == "error-time" || config.kind == "broad-phase") {
     for (const char* option : {"baseline", "save-baseline", "report", "jobs"}) {
       if (args.has(option))
-        throw UsageError(std::string("--") + option + " does not apply to the error-time study (" +
-                         config_file + "); leave it out");
+        throw UsageError(std::string("--") + option + " does not apply to the " + config.kind +
+                         " study (" + config_file + "); leave it out");
     }
   }
   std::vector<GroupSummary> baseline_groups;  // its errors now, not after the runs
@@ -197,6 +198,10 @@ int run_bench(int argc, char** argv) {
   for (const auto& scene : config.scenes) inputs.push_back({"a scene of the configuration", scene});
   gplanner::check_output_paths(outputs, inputs);
   check_output_folder(dir);
+  if (config.kind == "broad-phase") {  // no scenes: its spheres are generated
+    make_output_folder(dir);
+    return run_broad_phase_study(config, dir, !args.flag("no-plots"));
+  }
 
   // Scenes loaded once, before the workers are forked (they share them).
   const auto start = std::chrono::steady_clock::now();

@@ -7,7 +7,8 @@
 #      cmake -B build -DCMAKE_CUDA_ARCHITECTURES=90 && cmake --build build -j
 #      bench/reproduce.sh --bundle [BUILD_DIR]        (BUILD_DIR: default build)
 #    --bundle packs into .gpu/ the programs the tables use (BUILD_DIR/apps/gplan,
-#    BUILD_DIR/bench/gplanner_{knn_bench,call_sizes,peak_rates,thread_scaling},
+#    BUILD_DIR/bench/gplanner_{knn_bench,call_sizes,peak_rates,thread_scaling,
+#    link_broad_phase},
 #    BUILD_DIR/tests/gplanner_{tests,stability_tests}) with the real PR2 and Talos
 #    data from ../shared/data, and writes the commit to .gpu/commit ("-dirty" when
 #    tracked files differ from it). .gpu/ must travel with the checkout.
@@ -46,6 +47,14 @@
 #      ompl-plugin gplan bench config/bench/ompl_plugin.yaml: OMPL's ompl_plugin/
 #                 RRTConnect, PRM and LazyPRM with FCL and through
 #                 the plugin on the gpu and cpu backends (issue 22)
+#      broad-phase gplan bench config/bench/broad_phase.yaml: the     broad_phase/
+#                 seed's sphere all-pairs table (64 to 320 spheres,
+#                 CPU against GPU) and the scalable GPU broad phases
+#                 up to 1,000,000 spheres (issue 23); results.md holds
+#                 the tables; and the planner's sizes (50 link        link_broad_phase.jsonl
+#                 spheres, 1,000 checked pairs, 1,000 to 10,000
+#                 obstacle boxes): masked pair tests against
+#                 sort-and-sweep (gplanner_link_broad_phase)
 #    Every call also writes OUT_DIR/machine.txt (GPU, driver, CPU, commit, date,
 #    tables). Progress goes to stderr. The exit status is 1 when a program failed (the
 #    other tables still run). Where one command may run at most 10 minutes, split the
@@ -57,6 +66,7 @@
 #      bench/reproduce.sh OUT_DIR error-time
 #      bench/reproduce.sh OUT_DIR error-time-articulated
 #      bench/reproduce.sh OUT_DIR call-sizes ompl-plugin
+#      bench/reproduce.sh OUT_DIR broad-phase
 #      timeout 590 bench/reproduce.sh OUT_DIR plan   (more than 10 minutes: the runs
 #      done stay in OUT_DIR/plan_times/results.partial.csv)
 # 3. Back on the build machine: copy OUT_DIR to bench/runs/NAME/ and print the tables
@@ -74,7 +84,8 @@ if [ "${1:-}" = --bundle ]; then
   build=${2:-build}
   cd "$root"
   programs=(apps/gplan bench/gplanner_knn_bench bench/gplanner_call_sizes
-            bench/gplanner_peak_rates bench/gplanner_thread_scaling tests/gplanner_tests
+            bench/gplanner_peak_rates bench/gplanner_thread_scaling
+            bench/gplanner_link_broad_phase tests/gplanner_tests
             tests/gplanner_stability_tests)
   # gpu-bundle takes its options before the programs.
   ../shared/tools/gpu-bundle -d ../shared/data/moveit_resources_pr2_description \
@@ -95,7 +106,7 @@ mkdir -p "$1"
 out=$(cd "$1" && pwd)
 shift
 all=(gpu-tests peak collision agreement knn time-limit hostile seed-tables regression plan
-     error-time error-time-articulated call-sizes ompl-plugin)
+     error-time error-time-articulated call-sizes ompl-plugin broad-phase)
 tables=("$@")
 [ ${#tables[@]} -gt 0 ] || tables=("${all[@]}")
 for t in "${tables[@]}"; do
@@ -230,6 +241,20 @@ for t in "${tables[@]}"; do
     ompl-plugin)
       bench_config config/bench/ompl_plugin.yaml "$out/ompl_plugin" \
         --jobs $((cores > 5 ? cores - 4 : 1)) || failed+=("$t")
+      ;;
+    broad-phase)
+      # Not through bench_config: here exit 3 is a failure, a method whose pairs differed
+      # from the reference's (MISMATCH lines in the log). Plots: gplan bench is run again
+      # with matplotlib, or plot_broad_phase.py on results.csv.
+      status=0
+      "$run" "$bin/gplan" bench config/bench/broad_phase.yaml -o "$out/broad_phase" \
+        --no-plots || status=$?
+      if [ "$status" -ne 0 ]; then
+        say "broad-phase: exit $status (3: a method's pairs differed from the reference's)"
+        failed+=("$t")
+      fi
+      "$run" "$bin/gplanner_link_broad_phase" > "$out/link_broad_phase.jsonl" \
+        || failed+=("$t (link_broad_phase)")
       ;;
   esac
 done

@@ -131,19 +131,28 @@ BenchConfig load_bench_config(const std::string& file) {
                                 "milestones", "neighbors",  "repeat",       "seed",
                                 "tolerances"};
   keys.insert(error_time_keys().begin(), error_time_keys().end());
+  keys.insert(broad_phase_keys().begin(), broad_phase_keys().end());
   in.expect_map(root, "", keys);
   config.name =
       root["name"] ? in.text(root["name"], "name") : std::filesystem::path(file).stem().string();
   if (config.name.empty() || config.name.find_first_of("\n\r") != std::string::npos)
     in.fail(root["name"], "name", "must be one line of text");
   config.kind = in.text(in.required(root, "", "kind"), "kind");
-  if (config.kind != "planning" && config.kind != "queries" && config.kind != "error-time") {
+  if (config.kind != "planning" && config.kind != "queries" && config.kind != "error-time" &&
+      config.kind != "broad-phase") {
     in.fail(root["kind"], "kind",
-            "'" + config.kind + "' is not one of planning, queries, error-time");
+            "'" + config.kind + "' is not one of planning, queries, error-time, broad-phase");
+  }
+  const bool broad_phase = config.kind == "broad-phase";
+  if (broad_phase && root["scenes"]) {
+    in.fail(root["scenes"], "scenes",
+            "does not apply to kind: broad-phase (its spheres are generated); remove it");
   }
 
-  const YAML::Node scenes = in.required(root, "", "scenes");
-  for (const std::string& scene : names(in, scenes, "scenes", {}, "scene files")) {
+  const YAML::Node scenes =
+      broad_phase ? YAML::Node(YAML::NodeType::Sequence) : in.required(root, "", "scenes");
+  for (const std::string& scene :
+       broad_phase ? std::vector<std::string>{} : names(in, scenes, "scenes", {}, "scene files")) {
     const std::size_t i = config.scenes.size();
     const std::string resolved =
         (std::filesystem::path(file).parent_path() / scene).lexically_normal().string();
@@ -167,19 +176,24 @@ BenchConfig load_bench_config(const std::string& file) {
       "planners", "runs", "time_limit", "group_budget", "recheck_refinement", "simplify"};
   const std::vector<std::string> query_keys = {"tables",     "checkers",  "queries",
                                                "milestones", "neighbors", "repeat"};
-  const std::vector<std::string>& own_keys = config.kind == "planning"  ? planning_keys
-                                             : config.kind == "queries" ? query_keys
-                                                                        : error_time_keys();
-  // (The study has no baseline, so no tolerances either.)
+  const std::vector<std::string>& own_keys = config.kind == "planning"     ? planning_keys
+                                             : config.kind == "queries"    ? query_keys
+                                             : config.kind == "error-time" ? error_time_keys()
+                                                                           : broad_phase_keys();
+  // (The studies have no baseline, so no tolerances either.)
+  const bool study = config.kind == "error-time" || broad_phase;
   for (const std::string& key : keys) {
     if (!root[key] || contains(own_keys, key)) continue;
     if (contains(planning_keys, key) || contains(query_keys, key) ||
-        contains(error_time_keys(), key) || (key == "tolerances" && config.kind == "error-time"))
+        contains(error_time_keys(), key) || contains(broad_phase_keys(), key) ||
+        (key == "tolerances" && study))
       in.fail(root[key], key, "does not apply to kind: " + config.kind + "; remove it");
   }
 
   if (config.kind == "error-time") {
     config.error_time = read_error_time_options(in, root);
+  } else if (broad_phase) {
+    config.broad_phase = read_broad_phase_options(in, root);
   } else if (config.kind == "planning") {
     const YAML::Node planners = in.required(root, "", "planners");
     for (const std::string& label : names(in, planners, "planners", {}, "PLANNER@CHECKER names")) {

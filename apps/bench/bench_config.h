@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/broad_phase_config.h"
 #include "bench/error_time_config.h"
 
 namespace gplan {
@@ -39,8 +40,9 @@ struct BenchTolerances {
 struct BenchConfig {
   std::string file;                 // where it was read from
   std::string name;                 // the experiment's name
-  std::string kind;                 // "planning", "queries" or "error-time"
-  std::vector<std::string> scenes;  // scene files, resolved against the config's folder
+  std::string kind;                 // "planning", "queries", "error-time" or "broad-phase"
+  std::vector<std::string> scenes;  // scene files, resolved against the config's folder (none
+                                    // for broad-phase)
   // planning
   std::vector<PlannerChoice> planners;
   int runs = 10;
@@ -61,6 +63,8 @@ struct BenchConfig {
   int repeat = 5;
   // error-time (the error-against-time study)
   ErrorTimeOptions error_time;
+  // broad-phase (the sphere broad-phase study)
+  BroadPhaseOptions broad_phase;
   // all kinds
   std::uint64_t seed = 1;  // run i (from 0) of every group uses seed + i
   BenchTolerances tolerances;

@@ -24,6 +24,9 @@ extern const std::size_t kPlotBenchScriptSize;
 // apps/bench/plot_error_time.py, the same way.
 extern const unsigned char kPlotErrorTimeScript[];
 extern const std::size_t kPlotErrorTimeScriptSize;
+// apps/bench/plot_broad_phase.py, the same way.
+extern const unsigned char kPlotBroadPhaseScript[];
+extern const std::size_t kPlotBroadPhaseScriptSize;
 
 namespace {
 
@@ -218,6 +221,12 @@ bool draw_error_time_plots(const std::string& csv, const std::string& out_dir,
                            std::string* notice) {
   return run_plot_script("plot_error_time.py", kPlotErrorTimeScript, kPlotErrorTimeScriptSize, csv,
                          out_dir, notice);
+}
+
+bool draw_broad_phase_plots(const std::string& csv, const std::string& out_dir,
+                            std::string* notice) {
+  return run_plot_script("plot_broad_phase.py", kPlotBroadPhaseScript, kPlotBroadPhaseScriptSize,
+                         csv, out_dir, notice);
 }
 
 }  // namespace gplan

@@ -1,10 +1,10 @@
 #pragma once
 // The plots of `gplan bench` (plan-time distributions per scene and planner, the query
 // tables' batch times, the error-against-time study's curves), drawn by
-// apps/bench/plot_bench.py and plot_error_time.py with matplotlib. The scripts are
-// embedded in the binary (apps/CMakeLists.txt generates them as sources), so that an
-// installed gplan needs no file from the source tree; each runs as `PYTHON - CSV OUT_DIR`
-// with the script on its standard input, no shell in between.
+// apps/bench/plot_bench.py, plot_error_time.py and plot_broad_phase.py with matplotlib. The scripts
+// are embedded in the binary (apps/CMakeLists.txt generates them as sources), so that an installed
+// gplan needs no file from the source tree; each runs as `PYTHON - CSV OUT_DIR` with the script on
+// its standard input, no shell in between.
 //
 // PYTHON: $GPLANNER_PYTHON where set (and then only it), else python3 from PATH, else
 // /usr/bin/python3: the first that can import matplotlib.
@@ -24,5 +24,11 @@ bool draw_bench_plots(const std::string& csv, const std::string& out_dir, std::s
 // The same for the error-against-time study's CSV (apps/bench/error_time_record.h), with
 // apps/bench/plot_error_time.py: per scene, error against time, one curve per knob.
 bool draw_error_time_plots(const std::string& csv, const std::string& out_dir, std::string* notice);
+
+// The same for the broad-phase study's CSV (apps/bench/broad_phase_record.h), with
+// apps/bench/plot_broad_phase.py: median frame time against the sphere count, a curve per
+// method.
+bool draw_broad_phase_plots(const std::string& csv, const std::string& out_dir,
+                            std::string* notice);
 
 }  // namespace gplan

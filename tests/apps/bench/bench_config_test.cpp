@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "gplanner/planner/scene/input_error.h"
 #include "test_support.h"
@@ -25,7 +26,7 @@ TEST(BenchConfig, EveryShippedConfigurationLoads) {
       continue;
     SCOPED_TRACE(entry.path().string());
     const BenchConfig config = load_bench_config(entry.path().string());
-    EXPECT_FALSE(config.scenes.empty());
+    if (config.kind != "broad-phase") EXPECT_FALSE(config.scenes.empty());
     for (const std::string& scene : config.scenes) EXPECT_TRUE(fs::is_regular_file(scene)) << scene;
     ++loaded;
   }
@@ -130,7 +131,57 @@ INSTANTIATE_TEST_SUITE_P(
         BadConfig{"kind: planning\nscenes: [a.yaml]\nplanners: [ours-prm@gpu]\n"
                   "tolerances: {success_rate: 2}\n",
                   "4: tolerances.success_rate", "from 0 to 1"},
-        BadConfig{"kind: planning\nkind: queries\nscenes: [a.yaml]\n", "2: kind", "twice"}));
+        BadConfig{"kind: planning\nkind: queries\nscenes: [a.yaml]\n", "2: kind", "twice"},
+        // kind: broad-phase
+        BadConfig{"kind: broad-phase\nmethods: [cpu-all-pairs]\n", "1: counts", "missing"},
+        BadConfig{"kind: broad-phase\nmethods: [gpu-octree]\ncounts: [64]\n", "2: methods[0]",
+                  "not one of cpu-all-pairs"},
+        BadConfig{"kind: broad-phase\nmethods: [gpu-grid, gpu-grid]\ncounts: [64]\n",
+                  "2: methods[1]", "listed twice"},
+        BadConfig{"kind: broad-phase\nmethods: [gpu-grid]\ncounts: [64, 1]\n", "3: counts[1]",
+                  "whole number from 2"},
+        BadConfig{"kind: broad-phase\nmethods: [gpu-grid]\ncounts: [64]\nscenes: [a.yaml]\n",
+                  "4: scenes", "does not apply to kind: broad-phase"},
+        BadConfig{"kind: broad-phase\nmethods: [gpu-grid]\ncounts: [64]\nruns: 3\n", "4: runs",
+                  "does not apply to kind: broad-phase"},
+        BadConfig{"kind: broad-phase\nmethods: [gpu-grid]\ncounts: [64]\n"
+                  "max_count: {cpu-all-pairs: 100}\n",
+                  "4: max_count.cpu-all-pairs", "not in methods"},
+        BadConfig{"kind: broad-phase\nmethods: [gpu-grid]\ncounts: [64]\nradius: [0.5, 0.1]\n",
+                  "4: radius", "min <= max"},
+        BadConfig{"kind: broad-phase\nmethods: [gpu-grid]\ncounts: [64]\nvolume_fraction: 0.9\n",
+                  "4: volume_fraction", "at most 0.5"},
+        BadConfig{"kind: broad-phase\nmethods: [gpu-grid]\ncounts: [64]\nframes: 2\n"
+                  "min_frames: 5\n",
+                  "5: min_frames", "more than frames"},
+        BadConfig{"kind: broad-phase\nmethods: [gpu-grid]\ncounts: [64]\n"
+                  "tolerances: {time_ratio: 2}\n",
+                  "4: tolerances", "does not apply to kind: broad-phase"}));
+
+TEST(BenchConfig, ReadsTheBroadPhaseKeys) {
+  const ScratchFolder folder;
+  const std::string file = folder.write(
+      "bench.yaml",
+      "kind: broad-phase\nmethods: [gpu-grid, cpu-all-pairs]\ncounts: [320, 64]\n"
+      "max_count: {cpu-all-pairs: 1000}\nframes: 50\nmin_frames: 4\ncount_budget: 2.5\n"
+      "radius: [0.25, 1]\nvolume_fraction: 0.2\nspeed: 0.1\nseed: 3\n");
+  const BenchConfig c = load_bench_config(file);
+  EXPECT_EQ(c.kind, "broad-phase");
+  EXPECT_EQ(c.name, "bench");
+  EXPECT_TRUE(c.scenes.empty());
+  const BroadPhaseOptions& o = c.broad_phase;
+  EXPECT_EQ(o.methods, (std::vector<std::string>{"gpu-grid", "cpu-all-pairs"}));
+  EXPECT_EQ(o.counts, (std::vector<std::uint64_t>{64, 320}));  // ascending
+  EXPECT_EQ(o.max_count.at("cpu-all-pairs"), 1000u);
+  EXPECT_EQ(o.frames, 50);
+  EXPECT_EQ(o.min_frames, 4);
+  EXPECT_DOUBLE_EQ(o.count_budget_s, 2.5);
+  EXPECT_DOUBLE_EQ(o.radius_min, 0.25);
+  EXPECT_DOUBLE_EQ(o.radius_max, 1);
+  EXPECT_DOUBLE_EQ(o.volume_fraction, 0.2);
+  EXPECT_DOUBLE_EQ(o.speed, 0.1);
+  EXPECT_EQ(c.seed, 3u);
+}
 
 }  // namespace
 }  // namespace gplan

@@ -234,7 +234,7 @@ for t in "${tables[@]}"; do
       ;;
     call-sizes)
       for scene in scenes/*.yaml; do
-        "$run" "$bin/gplanner_call_sizes" "$scene" || failed+=("$t ($scene)")
+        "$run" "$bin/gplanner_call_sizes" "$scene" --repeat 15 --motions 1000 || failed+=("$t ($scene)")
         echo
       done > "$out/call_sizes.md"
       ;;

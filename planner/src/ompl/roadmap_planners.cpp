@@ -11,6 +11,7 @@
 #include <limits>
 #include <string>
 
+#include "gplanner/planner/ompl/motion_validator.h"
 #include "gplanner/planner/ompl/state_space.h"
 #include "gplanner/planner/planning/scene_metric.h"
 #include "gplanner/planner/scene/scene.h"
@@ -33,6 +34,10 @@ unsigned long long draw_seed(ompl::RNG* rng) {
 // Benchmark's "valid segment fraction REAL" count them.
 struct MotionCounters : ob::MotionValidator {
   static void add(ob::MotionValidator* validator, std::size_t valid, std::size_t invalid) {
+    if (const auto* ours = dynamic_cast<const ompl_adapters::MotionValidator*>(validator)) {
+      ours->add_counts(valid, invalid);  // under the lock its other callers take
+      return;
+    }
     validator->*(&MotionCounters::valid_) += static_cast<unsigned>(valid);
     validator->*(&MotionCounters::invalid_) += static_cast<unsigned>(invalid);
   }

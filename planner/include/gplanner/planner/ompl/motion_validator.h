@@ -58,6 +58,10 @@ class MotionValidator : public ompl::base::MotionValidator {
       const std::vector<std::pair<const ompl::base::State*, const ompl::base::State*>>& motions,
       std::vector<std::uint8_t>* valid) const;
 
+  // Adds motions checked elsewhere (our planners' edges) to OMPL's counters, under the
+  // lock that calls on other threads take.
+  void add_counts(std::size_t valid, std::size_t invalid) const { count(valid, invalid); }
+
  private:
   // Adds to OMPL's counters (valid_, invalid_), which calls on other threads update too.
   void count(std::size_t valid, std::size_t invalid) const;

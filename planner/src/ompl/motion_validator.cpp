@@ -20,6 +20,7 @@ MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, cons
       scene_(scene),
       checker_(checker),
       local_(scene, checker, options),
+      calling_thread_local_(scene, checker->calling_thread_checker(), options),
       certifier_(scene, checker) {}
 
 MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
@@ -29,6 +30,7 @@ MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, cons
       scene_(scene),
       checker_(checker),
       local_(scene, checker, plan_options(scene).local),
+      calling_thread_local_(scene, checker->calling_thread_checker(), plan_options(scene).local),
       edges_(edges),
       certifier_(scene, checker, certified) {}
 
@@ -61,8 +63,8 @@ bool MotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base:
 bool MotionValidator::sampled_free(const float* a, const float* b) const {
   const auto by_levels = [&] {
     std::uint8_t end = 1, between = 1;
-    checker_->check(b, 1, &end);
-    return end == 0 && local_.check_motions(a, b, 1, &between) && between == 0;
+    checker_->calling_thread_checker()->check(b, 1, &end);
+    return end == 0 && calling_thread_local_.check_motions(a, b, 1, &between) && between == 0;
   };
   if (checker_->configurations_per_call_cost() == 0) return by_levels();  // calls cost nothing
   int way = 0;

@@ -55,6 +55,7 @@ class GpuChecker : public CollisionChecker {
   std::size_t configurations_per_call_cost() const override { return 8192; }
   // Calls the host answers: no GPU call's fixed cost.
   std::size_t cheap_calls_up_to() const override { return routing_.host_threads_up_to; }
+  CollisionChecker* calling_thread_checker() override { return &calling_thread_; }
 
   // Of the last check() on the GPU to finish (calls answered on the host leave it as is).
   GpuCheckStats last_stats() const { return gpu_.last_stats(); }
@@ -63,6 +64,23 @@ class GpuChecker : public CollisionChecker {
   const HostCallRouting& routing() const { return routing_; }
 
  private:
+  // The host core on the calling thread, for calling_thread_checker().
+  class CallingThread : public CollisionChecker {
+   public:
+    explicit CallingThread(CpuBatchChecker* host) : host_(host) {}
+    std::string backend() const override { return "gpu"; }
+    void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override {
+      host_->check(configurations, n, verdicts, nullptr, 1);
+    }
+    void check_clearances(const float* configurations, std::size_t n, const float* clearances,
+                          std::uint8_t* verdicts) override {
+      host_->check(configurations, n, verdicts, clearances, 1);
+    }
+
+   private:
+    CpuBatchChecker* host_;
+  };
+
   GpuChecker(const CollisionModel& model, const Scene& scene, const GpuCheckerOptions& options,
              int host_threads);
   void route(const float* configurations, std::size_t n, const float* clearances,
@@ -74,6 +92,7 @@ class GpuChecker : public CollisionChecker {
   CpuBatchChecker host_;
   int host_threads_;
   HostCallRouting routing_;
+  CallingThread calling_thread_{&host_};
 };
 
 }  // namespace gplanner

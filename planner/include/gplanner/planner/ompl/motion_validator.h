@@ -75,13 +75,15 @@ class MotionValidator : public ompl::base::MotionValidator {
   CollisionChecker* checker_;
   mutable std::mutex counters_mutex_;
   mutable LocalPlanner local_;  // takes concurrent calls
+  // The same on the checker's calling-thread checks (single motions level by level).
+  mutable LocalPlanner calling_thread_local_;
   EdgeChecks edges_ = EdgeChecks::kSampled;
   mutable CertifiedMotions certifier_;  // takes concurrent calls
 
   // A single motion on a checker with a fixed cost per call (the gpu backend) is checked
-  // one of two ways: level by level from the end state up to the first collision (small
-  // calls, which the checker answers on the host), or every sample and the end in one
-  // call (one GPU call). Which costs less depends on the robot and on how often motions
+  // one of two ways: level by level from the end state up to the first collision, every
+  // level on the calling thread (CollisionChecker::calling_thread_checker), or every
+  // sample and the end in one call (one GPU call). Which costs less depends on the robot and on how often motions
   // collide early, so both are timed on the calls themselves: the way with the lower
   // running mean is taken, the other every 16th call.
   struct ChoiceOfWay {

@@ -69,9 +69,12 @@ int main(int argc, char** argv) {
   unsigned long long seed = 1;
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string key = argv[i];
-    if (key == "--repeat") repeat = std::max(1, std::atoi(argv[i + 1]));
-    else if (key == "--motions") motions = std::max(1, std::atoi(argv[i + 1]));
-    else if (key == "--seed") seed = std::strtoull(argv[i + 1], nullptr, 10);
+    if (key == "--repeat")
+      repeat = std::max(1, std::atoi(argv[i + 1]));
+    else if (key == "--motions")
+      motions = std::max(1, std::atoi(argv[i + 1]));
+    else if (key == "--seed")
+      seed = std::strtoull(argv[i + 1], nullptr, 10);
     else {
       std::cerr << "unknown option " << key << "\n";
       return 2;
@@ -150,8 +153,7 @@ int main(int argc, char** argv) {
     ob::SpaceInformationPtr si;
   };
   std::vector<Validator> validators;
-  const auto wire = [&](const std::string& name, gplanner::CollisionChecker* checker,
-                        bool ours) {
+  const auto wire = [&](const std::string& name, gplanner::CollisionChecker* checker, bool ours) {
     og::SimpleSetup setup(gplanner::ompl_adapters::make_state_space(scene));
     ob::SpaceInformationPtr si = setup.getSpaceInformation();
     si->setStateValidityChecker(

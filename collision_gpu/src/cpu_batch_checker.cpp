@@ -39,20 +39,22 @@ void CpuBatchChecker::check(const float* configurations, std::size_t n, std::uin
   // This call's counts (calls from other threads run at once), published when it ends.
   std::atomic<unsigned long long> bv_tests{0}, triangle_tests{0};
   const std::size_t width = view.width;
-  parallel_for(n, std::max(1, std::min(threads, impl.threads)), [&](std::size_t begin, std::size_t end, int) {
-    detail::Xf X_WL[detail::kMaxLinks];
-    // Counted on this thread's stack, added to the call's totals once per chunk: counting
-    // in shared totals in every test made the threads wait on each other's writes.
-    detail::TraversalCounts counts;
-    for (std::size_t i = begin; i < end; ++i) {
-      verdicts[i] = detail::query_collides(view, configurations + i * width,
-                                           query_clearances(view, i), X_WL, &counts)
-                        ? 1
-                        : 0;
-    }
-    bv_tests += counts.bv_tests;
-    triangle_tests += counts.triangle_tests;
-  });
+  parallel_for(n, std::max(1, std::min(threads, impl.threads)),
+               [&](std::size_t begin, std::size_t end, int) {
+                 detail::Xf X_WL[detail::kMaxLinks];
+                 // Counted on this thread's stack, added to the call's totals once per chunk:
+                 // counting in shared totals in every test made the threads wait on each other's
+                 // writes.
+                 detail::TraversalCounts counts;
+                 for (std::size_t i = begin; i < end; ++i) {
+                   verdicts[i] = detail::query_collides(view, configurations + i * width,
+                                                        query_clearances(view, i), X_WL, &counts)
+                                     ? 1
+                                     : 0;
+                 }
+                 bv_tests += counts.bv_tests;
+                 triangle_tests += counts.triangle_tests;
+               });
   const std::lock_guard<std::mutex> lock(impl.counts_mutex);
   impl.last_counts = {bv_tests.load(), triangle_tests.load()};
 }

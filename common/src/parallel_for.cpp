@@ -140,7 +140,6 @@ class HelperPool {
   int started_ = 0, idle_ = 0;
 };
 
-
 }  // namespace
 
 int resolve_thread_count(int requested) {

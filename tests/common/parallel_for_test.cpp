@@ -125,7 +125,8 @@ TEST(ParallelFor, ThreadsThatFailToStartLeaveTheWholeLoopToThoseThatDid) {
       if (s != 1) return false;
     // Once more: a budget that kept the helpers that never started would be spent.
     std::atomic<std::size_t> second{0};
-    parallel_for(n, 4, [&](std::size_t begin, std::size_t end, int) { second += end - begin; }, 1);
+    parallel_for(
+        n, 4, [&](std::size_t begin, std::size_t end, int) { second += end - begin; }, 1);
     return second == n;
   });
   EXPECT_EQ(code, 0) << "0: every item once; 1: items missed or repeated; 2: threw; 134: "
@@ -155,7 +156,8 @@ TEST(ParallelFor, CallsReuseTheSameHelperThreads) {
 // fork() leaves the child none of the helper threads (gplan bench forks its workers):
 // the child's loops still run every index once, on helpers of its own.
 TEST(ParallelFor, AForkedChildRunsLoopsOnHelpersOfItsOwn) {
-  parallel_for(1000, 4, [](std::size_t, std::size_t, int) {}, 1);  // helpers exist
+  parallel_for(
+      1000, 4, [](std::size_t, std::size_t, int) {}, 1);  // helpers exist
   const pid_t child = fork();
   ASSERT_GE(child, 0);
   if (child == 0) {

@@ -565,8 +565,8 @@ void BalancedTraversal::launch_roots(const CollisionModelView& m, const float* d
 
 std::size_t BalancedTraversal::small_batch_up_to(std::size_t warp_per_pair_up_to) const {
   return warp_per_pair_up_to != GpuCheckerOptions::kAuto ? warp_per_pair_up_to
-         : many_bodies_                                   ? 1024
-                                                          : 10;
+         : many_bodies_                                  ? 1024
+                                                         : 10;
 }
 
 void BalancedTraversal::enqueue_small(const CollisionModelView& m, const float* d_q, int n,

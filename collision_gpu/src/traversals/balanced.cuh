@@ -83,16 +83,15 @@ class BalancedTraversal {
   // the default stream, the traversal's state copied to h_state (page-locked) at the end.
   // After the stream has been synchronised, finish_small() reads it: false when the jobs
   // overflowed their queue (run the batch again with run()).
-  void enqueue_small(const CollisionModelView& m, const float* d_q, int n,
-                     std::uint8_t* d_verdicts, DeviceTestCounts* d_counts,
-                     BalancedState* h_state);
+  void enqueue_small(const CollisionModelView& m, const float* d_q, int n, std::uint8_t* d_verdicts,
+                     DeviceTestCounts* d_counts, BalancedState* h_state);
   bool finish_small(const BalancedState& h_state, GpuCheckStats* stats) const;
 
  private:
   BalancedState read_state();
   // The kinematics and broad-phase kernel that makes a batch's jobs.
-  void launch_roots(const CollisionModelView& m, const float* d_q, int n,
-                    std::uint8_t* d_verdicts, GpuCheckStats* stats);
+  void launch_roots(const CollisionModelView& m, const float* d_q, int n, std::uint8_t* d_verdicts,
+                    GpuCheckStats* stats);
   // The containment step of the queries the traversal left free.
   void run_containment(const CollisionModelView& m, const float* d_q, int n,
                        std::uint8_t* d_verdicts);

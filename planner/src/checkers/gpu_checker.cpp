@@ -97,13 +97,13 @@ void GpuChecker::measure_routing(const Scene& scene) {
         n, [&](const float* rows, std::size_t m) { gpu_.check(rows, m, verdicts.data()); }));
     // Host calls of up to a chunk of the pool's loops run on the calling thread alone;
     // once the pool is twice as slow as the GPU, larger calls are not timed there.
-    r.host_threads_seconds.push_back(
-        host_still_competes
-            ? median_of_calls(n,
-                              [&](const float* rows, std::size_t m) {
-                                host_.check(rows, m, verdicts.data(), nullptr, host_threads_);
-                              })
-            : 1e30);
+    r.host_threads_seconds.push_back(host_still_competes
+                                         ? median_of_calls(n,
+                                                           [&](const float* rows, std::size_t m) {
+                                                             host_.check(rows, m, verdicts.data(),
+                                                                         nullptr, host_threads_);
+                                                           })
+                                         : 1e30);
     host_still_competes = r.host_threads_seconds.back() < 2 * r.gpu_seconds.back();
   }
   // The host while it beats the GPU, from the smallest call up (powers of two); calls of
@@ -113,8 +113,7 @@ void GpuChecker::measure_routing(const Scene& scene) {
                     interpolate(sizes, r.host_threads_seconds, n));
   };
   const auto gpu = [&](std::size_t n) { return interpolate(sizes, r.gpu_seconds, n); };
-  for (std::size_t n = 1; n <= sizes.back() && host(n) <= gpu(n); n *= 2)
-    r.host_threads_up_to = n;
+  for (std::size_t n = 1; n <= sizes.back() && host(n) <= gpu(n); n *= 2) r.host_threads_up_to = n;
   r.calling_thread_up_to = std::min<std::size_t>(r.host_threads_up_to, 16);
 }
 

@@ -22,7 +22,8 @@ using gplanner::testing::ScratchFolder;
 TEST(BenchConfig, EveryShippedConfigurationLoads) {
   int loaded = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(project_root()) / "config" / "bench")) {
-    if (entry.path().extension() != ".yaml" || entry.path().string().find(".baseline.") != std::string::npos)
+    if (entry.path().extension() != ".yaml" ||
+        entry.path().string().find(".baseline.") != std::string::npos)
       continue;
     SCOPED_TRACE(entry.path().string());
     const BenchConfig config = load_bench_config(entry.path().string());

@@ -23,9 +23,7 @@ namespace {
 
 constexpr int kThreads = 6;
 
-Scene pr2_base_arm() {
-  return load_scene(testing::project_root() + "/scenes/pr2_base_arm.yaml");
-}
+Scene pr2_base_arm() { return load_scene(testing::project_root() + "/scenes/pr2_base_arm.yaml"); }
 
 std::string param_name(const ::testing::TestParamInfo<std::string>& info) {
   std::string name = info.param;
@@ -93,8 +91,8 @@ TEST_P(ConcurrentCheck, EveryVerdictAsOnOneThread) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, ConcurrentCheck, ::testing::Values("fcl", "cpu", "gpu", "GpuRouted"),
-                         param_name);
+INSTANTIATE_TEST_SUITE_P(Backends, ConcurrentCheck,
+                         ::testing::Values("fcl", "cpu", "gpu", "GpuRouted"), param_name);
 
 // The test counts read while other threads check are always those of one whole call:
 // every call checks the same rows, so every read gives that call's counts.

@@ -199,9 +199,8 @@ TEST(GpuChecker, RoutesCallsOfEverySizeByMeasuredCrossovers) {
       const std::vector<std::uint8_t> cpu_part(on_cpu.begin(), on_cpu.begin() + n);
       if (n <= r.host_threads_up_to) EXPECT_EQ(a, cpu_part) << name << " " << n;
       for (const std::vector<std::uint8_t>* v : {&a, &b}) {
-        const CheckerComparison c =
-            compare_verdicts(q.data(), n, width, v->data(), cpu_part.data(), &fcl,
-                             tolerance_delta(scene));
+        const CheckerComparison c = compare_verdicts(q.data(), n, width, v->data(), cpu_part.data(),
+                                                     &fcl, tolerance_delta(scene));
         EXPECT_EQ(c.missed_collisions, 0u) << name << " " << n;
         EXPECT_EQ(c.extra_outside_band, 0u) << name << " " << n;
       }

@@ -56,7 +56,8 @@ TEST_P(OmplConcurrentAdapters, EveryAnswerAsOnOneThread) {
   const auto validity =
       std::make_shared<ompl_adapters::StateValidityChecker>(si, scene, checker.get());
   setup.setStateValidityChecker(validity);
-  si->setMotionValidator(std::make_shared<ompl_adapters::MotionValidator>(si, scene, checker.get()));
+  si->setMotionValidator(
+      std::make_shared<ompl_adapters::MotionValidator>(si, scene, checker.get()));
   si->setup();
   const ob::MotionValidatorPtr validator = si->getMotionValidator();
   auto* batch_validator = dynamic_cast<ompl_adapters::MotionValidator*>(validator.get());
@@ -108,7 +109,8 @@ TEST_P(OmplConcurrentAdapters, EveryAnswerAsOnOneThread) {
         } else if (t % 3 == 1) {
           std::pair<ob::State*, double> last{last_state, 1.0};
           const bool ok = validator->checkMotion(states[i], ends[i], last);
-          wrong[t] += ok != static_cast<bool>(motion_valid[i]) || (!ok && last.second != fraction[i]);
+          wrong[t] +=
+              ok != static_cast<bool>(motion_valid[i]) || (!ok && last.second != fraction[i]);
           ++k;
         } else {
           const std::size_t count = std::min<std::size_t>({k % 2 ? 3u : 8u, n - i, n - k});
@@ -141,7 +143,8 @@ TEST_P(OmplConcurrentAdapters, EveryAnswerAsOnOneThread) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, OmplConcurrentAdapters, ::testing::Values("fcl", "cpu", "gpu", "GpuRouted"),
+INSTANTIATE_TEST_SUITE_P(Backends, OmplConcurrentAdapters,
+                         ::testing::Values("fcl", "cpu", "gpu", "GpuRouted"),
                          [](const ::testing::TestParamInfo<std::string>& info) {
                            std::string name = info.param;
                            name[0] = static_cast<char>(std::toupper(name[0]));

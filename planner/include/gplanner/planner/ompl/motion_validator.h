@@ -83,9 +83,9 @@ class MotionValidator : public ompl::base::MotionValidator {
   // A single motion on a checker with a fixed cost per call (the gpu backend) is checked
   // one of two ways: level by level from the end state up to the first collision, every
   // level on the calling thread (CollisionChecker::calling_thread_checker), or every
-  // sample and the end in one call (one GPU call). Which costs less depends on the robot and on how
-  // often motions collide early, so both are timed on the calls themselves: the way with the lower
-  // running mean is taken, the other every 16th call.
+  // sample and the end in one call (one GPU call). Which costs less depends on the robot
+  // and on how often motions collide early, so both are timed on the calls themselves:
+  // the way with the lower running mean is taken, the other every 16th call.
   struct ChoiceOfWay {
     std::mutex mutex;
     double mean_seconds[2] = {0, 0};  // [levels, one call]

@@ -214,7 +214,8 @@ double LocalPlanner::last_valid_fraction(const float* a, const float* b, bool on
       }
     }
     first = last + 1;
-    chunk = std::max<std::size_t>(1, std::min(2 * chunk, cheap_calls_up_to));
+    // Doubling while calls stay cheap; past that, the rest in one call.
+    chunk = 2 * chunk <= cheap_calls_up_to ? 2 * chunk : static_cast<std::size_t>(n);
   }
   add_stats(1, n, batches);
   return 1.0;

@@ -88,8 +88,8 @@ class LocalPlanner : public MotionChecker {
   void set_stop(std::function<bool()> should_stop) { should_stop_ = std::move(should_stop); }
 
   // The samples of the motion, in order from a (exclusive) to b (inclusive), up to the
-  // first collision (a few per call where the checker answers small calls on the calling
-  // thread, else all in one batch): the fraction of the way of the last valid sample
+  // first collision (1, 2, 4, ... per call while the checker's calls stay cheap, then the
+  // rest in one call; all in one call where no call is cheap or one_call is set): the fraction of the way of the last valid sample
   // before the first collision (0 when the first sample collides), or 1 when all are
   // free.
   // one_call: every sample in one call, whatever the checker.

@@ -3,7 +3,7 @@
 // then plans a scene
 // - with OMPL's RRTConnect from 4 threads at once (ompl::tools::ParallelPlan), all on
 //   one shared gplanner checker (cpu backend) behind one validity checker and one
-//   motion validator;
+//   motion validator that certifies motions;
 // - with gplanner's lazy PRM as an OMPL planner;
 // and re-checks every path returned (FCL at every waypoint and at a tenth of the edge
 // resolution between them). Exits non-zero on any failure.
@@ -92,7 +92,11 @@ int main(int argc, char** argv) {
   const auto checker = ga::make_collision_checker(scene, "cpu");
   auto si = std::make_shared<ob::SpaceInformation>(ga::make_state_space(scene));
   si->setStateValidityChecker(std::make_shared<ga::StateValidityChecker>(si, scene, checker.get()));
-  si->setMotionValidator(std::make_shared<ga::MotionValidator>(si, scene, checker.get()));
+  // Certified motions: free at every configuration between two states, not only at the
+  // samples, so that no path OMPL returns passes through a wall its samples jumped (with
+  // sampled motions the re-check below found such paths now and then).
+  si->setMotionValidator(std::make_shared<ga::MotionValidator>(si, scene, checker.get(),
+                                                               gplanner::EdgeChecks::kCertified));
   si->setup();
 
   // RRTConnect from kThreads threads on the one checker.

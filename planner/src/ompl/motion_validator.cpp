@@ -2,6 +2,7 @@
 
 #include <ompl/base/SpaceInformation.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "gplanner/planner/ompl/state_space.h"
@@ -12,7 +13,7 @@ namespace gplanner::ompl_adapters {
 
 MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
                                  CollisionChecker* checker)
-    : MotionValidator(si, scene, checker, plan_options(scene).local) {}
+    : MotionValidator(si, scene, checker, EdgeChecks::kSampled) {}
 
 MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
                                  CollisionChecker* checker, const LocalPlannerOptions& options)
@@ -21,6 +22,7 @@ MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, cons
       checker_(checker),
       local_(scene, checker, options),
       calling_thread_local_(scene, checker->calling_thread_checker(), options),
+      follows_space_resolution_(false),
       certifier_(scene, checker) {}
 
 MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
@@ -32,7 +34,19 @@ MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, cons
       local_(scene, checker, plan_options(scene).local),
       calling_thread_local_(scene, checker->calling_thread_checker(), plan_options(scene).local),
       edges_(edges),
+      follows_space_resolution_(!(plan_options(scene).local.max_displacement > 0)),
       certifier_(scene, checker, certified) {}
+
+int MotionValidator::segments(const ompl::base::State* s1, const ompl::base::State* s2,
+                              const float* a, const float* b) const {
+  // Before setup() the space has no segment length yet (OMPL's count would divide by 0).
+  if (!follows_space_resolution_ || !si_->isSetup()) return local_.segments(a, b);
+  // At most ten times the segments a scene may ask for (memory: a motion's samples may
+  // go in one batch).
+  const double most = 10 * kMaxEdgeSegments;
+  return static_cast<int>(
+      std::clamp<double>(si_->getStateSpace()->validSegmentCount(s1, s2), 1, most));
+}
 
 bool MotionValidator::certified_free(const float* a, const float* b) const {
   std::uint8_t invalid = 1;
@@ -54,17 +68,19 @@ bool MotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base:
   b.resize(width);
   state_to_row(scene_, s1, a.data());
   state_to_row(scene_, s2, b.data());
-  const bool valid = edges_ == EdgeChecks::kCertified ? certified_free(a.data(), b.data())
-                                                      : sampled_free(a.data(), b.data());
+  const bool valid = edges_ == EdgeChecks::kCertified
+                         ? certified_free(a.data(), b.data())
+                         : sampled_free(a.data(), b.data(), segments(s1, s2, a.data(), b.data()));
   count(valid ? 1 : 0, valid ? 0 : 1);
   return valid;
 }
 
-bool MotionValidator::sampled_free(const float* a, const float* b) const {
+bool MotionValidator::sampled_free(const float* a, const float* b, int segments) const {
   const auto by_levels = [&] {
     std::uint8_t end = 1, between = 1;
     checker_->calling_thread_checker()->check(b, 1, &end);
-    return end == 0 && calling_thread_local_.check_motions(a, b, 1, &between) && between == 0;
+    return end == 0 && calling_thread_local_.check_motions(a, b, 1, &segments, &between) &&
+           between == 0;
   };
   if (checker_->configurations_per_call_cost() == 0) return by_levels();  // calls cost nothing
   int way = 0;
@@ -79,7 +95,8 @@ bool MotionValidator::sampled_free(const float* a, const float* b) const {
     }
   }
   const auto started = std::chrono::steady_clock::now();
-  const bool valid = way == 0 ? by_levels() : local_.last_valid_fraction(a, b, true) == 1.0;
+  const bool valid =
+      way == 0 ? by_levels() : local_.last_valid_fraction(a, b, segments, true) == 1.0;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const std::lock_guard<std::mutex> lock(way_.mutex);
@@ -101,7 +118,9 @@ bool MotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base:
     count(1, 0);
     return true;
   }
-  double fraction = si_->satisfiesBounds(s2) ? local_.last_valid_fraction(a.data(), b.data()) : -1;
+  const int n = segments(s1, s2, a.data(), b.data());
+  double fraction =
+      si_->satisfiesBounds(s2) ? local_.last_valid_fraction(a.data(), b.data(), n, false) : -1;
   if (fraction == 1.0 && !certified) {
     count(1, 0);
     return true;
@@ -110,7 +129,6 @@ bool MotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base:
   if (fraction < 0 || fraction == 1.0) {
     // Only the end state is out of bounds (or, certified, no sample collides but the
     // motion is not certified): the last sample before it.
-    const int n = local_.segments(a.data(), b.data());
     fraction = static_cast<double>(n - 1) / n;
   }
   if (certified && fraction > 0) {
@@ -136,7 +154,12 @@ void MotionValidator::checkMotions(
   if (edges_ == EdgeChecks::kCertified) {
     certifier_.check_motions(from.data(), to.data(), n, invalid.data());  // ends included
   } else {
-    local_.check_motions(from.data(), to.data(), n, invalid.data());
+    std::vector<int> segment_count(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      segment_count[i] =
+          segments(motions[i].first, motions[i].second, &from[i * width], &to[i * width]);
+    }
+    local_.check_motions(from.data(), to.data(), n, segment_count.data(), invalid.data());
     checker_->check(to.data(), n, end.data());
   }
   valid->assign(n, 0);

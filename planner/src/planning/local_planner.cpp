@@ -188,9 +188,13 @@ bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t
 }
 
 double LocalPlanner::last_valid_fraction(const float* a, const float* b, bool one_call) {
+  return last_valid_fraction(a, b, segments(a, b), one_call);
+}
+
+double LocalPlanner::last_valid_fraction(const float* a, const float* b, int n, bool one_call) {
   const ConfigurationSpace& space = scene_.space;
   const std::size_t width = space.width();
-  const int n = segments(a, b);
+  n = std::max(1, n);
   // In order from a; where small calls are answered on the calling thread, a few samples
   // a call (1, 2, 4, ...) up to the first collision, else all in one call.
   const std::size_t cheap_calls_up_to = checker_->cheap_calls_up_to();

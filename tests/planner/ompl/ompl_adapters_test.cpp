@@ -245,6 +245,46 @@ TEST(OmplMotionValidator, StopsAtTheFirstCollisionAsOmplsDoes) {
   for (ob::State* s : states) f.si->freeState(s);
 }
 
+// A resolution the user sets on the space information is followed, as OMPL's own
+// validators follow it: four times finer, a valid motion is checked at four times the
+// samples, as many as OMPL's DiscreteMotionValidator checks.
+TEST(OmplMotionValidator, FollowsTheResolutionSetOnTheSpaceInformation) {
+  Fixture f("piano.yaml");
+  CountingChecker counting(&f.checker);
+  const auto si = std::make_shared<ob::SpaceInformation>(ompl_adapters::make_state_space(f.scene));
+  si->setStateValidityChecker(
+      std::make_shared<ompl_adapters::StateValidityChecker>(si, f.scene, &counting));
+  const double scene_resolution = si->getStateValidityCheckingResolution();
+  si->setStateValidityCheckingResolution(scene_resolution / 4);
+  si->setup();
+  ompl_adapters::MotionValidator ours(si, f.scene, &counting);
+  ob::DiscreteMotionValidator discrete(si);
+  LocalPlanner at_scene_resolution(f.scene, &f.checker);
+  const std::vector<ob::State*> states = f.states(200, 5);
+  std::vector<float> a(f.scene.space.width()), b(f.scene.space.width());
+  int compared = 0;
+  for (int i = 0; i + 1 < 200 && compared < 10; ++i) {
+    ob::State* near = si->allocState();
+    si->getStateSpace()->interpolate(states[i], states[i + 1], 0.05, near);
+    counting.checked = 0;
+    const bool x = ours.checkMotion(states[i], near);
+    const std::size_t by_ours = counting.checked;
+    counting.checked = 0;
+    const bool y = discrete.checkMotion(states[i], near);
+    EXPECT_EQ(x, y) << i;
+    if (x && f.validity->isValid(states[i])) {
+      state_to_row(f.scene, states[i], a.data());
+      state_to_row(f.scene, near, b.data());
+      EXPECT_EQ(by_ours, counting.checked) << i;  // every sample and the end, both
+      EXPECT_GE(by_ours, 3u * at_scene_resolution.segments(a.data(), b.data())) << i;
+      ++compared;
+    }
+    si->freeState(near);
+  }
+  EXPECT_GT(compared, 3);
+  for (ob::State* s : states) f.si->freeState(s);
+}
+
 // Certified: every answer is CertifiedMotions's, one motion at a time and in a batch; a
 // motion that is not certified has a last valid state up to which it certifies.
 TEST(OmplMotionValidator, CertifiedAnswersAreCertifiedMotions) {

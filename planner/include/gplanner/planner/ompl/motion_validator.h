@@ -67,9 +67,15 @@ class MotionValidator : public ompl::base::MotionValidator {
   void count(std::size_t valid, std::size_t invalid) const;
   // Certified: whether the motion a -> b (rows) is certified free.
   bool certified_free(const float* a, const float* b) const;
-  // Sampled: whether the motion a -> b is free, its end included, in the way that has
-  // cost less on this scene so far (ChoiceOfWay).
-  bool sampled_free(const float* a, const float* b) const;
+  // Sampled: whether the motion a -> b (segments long) is free, its end included, in the
+  // way that has cost less on this scene so far (ChoiceOfWay).
+  bool sampled_free(const float* a, const float* b, int segments) const;
+  // The segments a motion is sampled in: OMPL's validSegmentCount, so that a resolution
+  // the user sets on the space information (setStateValidityCheckingResolution) is
+  // followed as OMPL's own validators follow it; the local planner's own count where it
+  // was given options, or the scene bounds robot-point motion (max_displacement).
+  int segments(const ompl::base::State* s1, const ompl::base::State* s2, const float* a,
+               const float* b) const;
 
   const Scene& scene_;
   CollisionChecker* checker_;
@@ -78,7 +84,8 @@ class MotionValidator : public ompl::base::MotionValidator {
   // The same on the checker's calling-thread checks (single motions level by level).
   mutable LocalPlanner calling_thread_local_;
   EdgeChecks edges_ = EdgeChecks::kSampled;
-  mutable CertifiedMotions certifier_;  // takes concurrent calls
+  bool follows_space_resolution_ = true;  // segments(): OMPL's count
+  mutable CertifiedMotions certifier_;    // takes concurrent calls
 
   // A single motion on a checker with a fixed cost per call (the gpu backend) is checked
   // one of two ways: level by level from the end state up to the first collision, every

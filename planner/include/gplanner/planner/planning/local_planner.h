@@ -88,12 +88,13 @@ class LocalPlanner : public MotionChecker {
   void set_stop(std::function<bool()> should_stop) { should_stop_ = std::move(should_stop); }
 
   // The samples of the motion, in order from a (exclusive) to b (inclusive), up to the
-  // first collision (1, 2, 4, ... per call while the checker's calls stay cheap, then the
-  // rest in one call; all in one call where no call is cheap or one_call is set): the fraction of the way of the last valid sample
-  // before the first collision (0 when the first sample collides), or 1 when all are
-  // free.
-  // one_call: every sample in one call, whatever the checker.
+  // first collision (1, 2, 4, ... per call while the checker's calls stay cheap, then
+  // the rest in one call; all in one call where no call is cheap or one_call is set):
+  // the fraction of the way of the last valid sample before the first collision (0 when
+  // the first sample collides), or 1 when all are free.
   double last_valid_fraction(const float* a, const float* b, bool one_call = false);
+  // The same with the motion's segment count given (e.g. OMPL's validSegmentCount).
+  double last_valid_fraction(const float* a, const float* b, int segments, bool one_call);
 
   // The checker's configurations_per_call_cost(), and the one-batch limit above.
   std::size_t configurations_per_call_cost() const {

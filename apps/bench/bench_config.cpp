@@ -49,18 +49,6 @@ std::vector<std::string> names(const YamlReader& in, const YAML::Node& node, con
   return out;
 }
 
-// A whole number in [low, high].
-std::uint64_t whole(const YamlReader& in, const YAML::Node& node, const std::string& key,
-                    std::uint64_t low, std::uint64_t high) {
-  const double value = in.number(node, key);
-  if (value != std::floor(value) || value < double(low) || value > double(high)) {
-    in.fail(node, key,
-            "expected a whole number from " + std::to_string(low) + " to " + std::to_string(high) +
-                ", found '" + node.Scalar() + "'");
-  }
-  return static_cast<std::uint64_t>(value);
-}
-
 double positive(const YamlReader& in, const YAML::Node& node, const std::string& key, double high) {
   const double value = in.number(node, key);
   if (!(value > 0) || value > high) {
@@ -210,14 +198,14 @@ BenchConfig load_bench_config(const std::string& file) {
       }
       config.planners.push_back(choice);
     }
-    if (root["runs"]) config.runs = int(whole(in, root["runs"], "runs", 1, 100000));
+    if (root["runs"]) config.runs = int(in.whole_number(root["runs"], "runs", 1, 100000));
     if (root["time_limit"])
       config.time_limit_s = positive(in, root["time_limit"], "time_limit", 86400);
     if (root["group_budget"])
       config.group_budget_s = positive(in, root["group_budget"], "group_budget", 1e7);
     if (root["recheck_refinement"]) {
       config.recheck_refinement =
-          double(whole(in, root["recheck_refinement"], "recheck_refinement", 1, 1000));
+          double(in.whole_number(root["recheck_refinement"], "recheck_refinement", 1, 1000));
     }
     if (root["simplify"]) {
       const std::string value = in.text(root["simplify"], "simplify");
@@ -229,14 +217,14 @@ BenchConfig load_bench_config(const std::string& file) {
     config.tables = names(in, in.required(root, "", "tables"), "tables", query_tables(), "tables");
     config.checkers = names(in, in.required(root, "", "checkers"), "checkers",
                             query_table_checkers(), "checkers");
-    if (root["queries"]) config.queries = whole(in, root["queries"], "queries", 1, 100000000);
+    if (root["queries"]) config.queries = in.whole_number(root["queries"], "queries", 1, 100000000);
     if (root["milestones"])
-      config.milestones = whole(in, root["milestones"], "milestones", 2, 10000000);
+      config.milestones = in.whole_number(root["milestones"], "milestones", 2, 10000000);
     if (root["neighbors"])
-      config.neighbors = int(whole(in, root["neighbors"], "neighbors", 1, 1000));
-    if (root["repeat"]) config.repeat = int(whole(in, root["repeat"], "repeat", 1, 1000));
+      config.neighbors = int(in.whole_number(root["neighbors"], "neighbors", 1, 1000));
+    if (root["repeat"]) config.repeat = int(in.whole_number(root["repeat"], "repeat", 1, 1000));
   }
-  if (root["seed"]) config.seed = whole(in, root["seed"], "seed", 1, 4000000000ULL);
+  if (root["seed"]) config.seed = in.whole_number(root["seed"], "seed", 1, 4000000000ULL);
   config.tolerances = read_tolerances(in, root["tolerances"]);
   return config;
 }

@@ -29,18 +29,6 @@ std::string method_name(const YamlReader& in, const YAML::Node& node, const std:
   return name;
 }
 
-// A whole number in [low, high].
-std::uint64_t whole(const YamlReader& in, const YAML::Node& node, const std::string& key,
-                    std::uint64_t low, std::uint64_t high) {
-  const double value = in.number(node, key);
-  if (value != std::floor(value) || value < double(low) || value > double(high)) {
-    in.fail(node, key,
-            "expected a whole number from " + std::to_string(low) + " to " + std::to_string(high) +
-                ", found '" + node.Scalar() + "'");
-  }
-  return static_cast<std::uint64_t>(value);
-}
-
 // A number in (low, high].
 double above(const YamlReader& in, const YAML::Node& node, const std::string& key, double low,
              double high, const std::string& what) {
@@ -81,7 +69,7 @@ BroadPhaseOptions read_broad_phase_options(const YamlReader& in, const YAML::Nod
     in.fail(counts, "counts", "expected a list of sphere counts, e.g. [64, 128, 192, 256, 320]");
   for (std::size_t i = 0; i < counts.size(); ++i) {
     const std::string key = "counts[" + std::to_string(i) + "]";
-    const std::uint64_t n = whole(in, counts[i], key, 2, 100000000);
+    const std::uint64_t n = in.whole_number(counts[i], key, 2, 100000000);
     if (std::find(o.counts.begin(), o.counts.end(), n) != o.counts.end())
       in.fail(counts[i], key, "'" + counts[i].Scalar() + "' is listed twice; list it once");
     o.counts.push_back(n);
@@ -97,12 +85,12 @@ BroadPhaseOptions read_broad_phase_options(const YamlReader& in, const YAML::Nod
       if (std::find(o.methods.begin(), o.methods.end(), name) == o.methods.end())
         in.fail(entry.first, key,
                 "'" + name + "' is not in methods; add it there or leave it out here");
-      o.max_count[name] = whole(in, entry.second, key, 2, 100000000);
+      o.max_count[name] = in.whole_number(entry.second, key, 2, 100000000);
     }
   }
-  if (root["frames"]) o.frames = int(whole(in, root["frames"], "frames", 1, 1000000));
+  if (root["frames"]) o.frames = int(in.whole_number(root["frames"], "frames", 1, 1000000));
   if (root["min_frames"])
-    o.min_frames = int(whole(in, root["min_frames"], "min_frames", 1, 1000000));
+    o.min_frames = int(in.whole_number(root["min_frames"], "min_frames", 1, 1000000));
   if (o.min_frames > o.frames) {
     in.fail(root["min_frames"], "min_frames",
             "is more than frames (" + std::to_string(o.frames) + "); make it at most that");

@@ -19,18 +19,6 @@ std::string number_text(double value) {
   return text.str();
 }
 
-// A whole number in [low, high].
-std::uint64_t whole(const YamlReader& in, const YAML::Node& node, const std::string& key,
-                    std::uint64_t low, std::uint64_t high) {
-  const double value = in.number(node, key);
-  if (value != std::floor(value) || value < double(low) || value > double(high)) {
-    in.fail(node, key,
-            "expected a whole number from " + std::to_string(low) + " to " + std::to_string(high) +
-                ", found '" + node.Scalar() + "'");
-  }
-  return static_cast<std::uint64_t>(value);
-}
-
 // A list of numbers, each in (low, high] (or [low, high] when `low_closed`), whole where
 // `whole_numbers`, none twice, at least one.
 std::vector<double> numbers(const YamlReader& in, const YAML::Node& node, const std::string& key,
@@ -106,11 +94,11 @@ ErrorTimeOptions read_error_time_options(const YamlReader& in, const YAML::Node&
                 "'" + c + "' is not in checkers; add it there or leave it out here");
     }
   }
-  if (root["states"]) options.states = whole(in, root["states"], "states", 1, 100000000);
-  if (root["edges"]) options.edges = whole(in, root["edges"], "edges", 1, 10000000);
+  if (root["states"]) options.states = in.whole_number(root["states"], "states", 1, 100000000);
+  if (root["edges"]) options.edges = in.whole_number(root["edges"], "edges", 1, 10000000);
   if (root["roadmap_milestones"]) {
     options.roadmap_milestones =
-        whole(in, root["roadmap_milestones"], "roadmap_milestones", 2, 10000000);
+        in.whole_number(root["roadmap_milestones"], "roadmap_milestones", 2, 10000000);
   }
   if (root["edge_resolutions"]) {
     options.edge_resolutions =
@@ -148,7 +136,7 @@ ErrorTimeOptions read_error_time_options(const YamlReader& in, const YAML::Node&
     options.plan_milestones = numbers(in, root["plan_milestones"], "plan_milestones", 2, true, 1e7,
                                       true, "first-round milestone counts");
   }
-  if (root["runs"]) options.runs = int(whole(in, root["runs"], "runs", 1, 100000));
+  if (root["runs"]) options.runs = int(in.whole_number(root["runs"], "runs", 1, 100000));
   if (root["time_limit"]) {
     options.time_limit_s = in.number(root["time_limit"], "time_limit");
     if (!(options.time_limit_s > 0 && options.time_limit_s <= 86400)) {
@@ -157,7 +145,7 @@ ErrorTimeOptions read_error_time_options(const YamlReader& in, const YAML::Node&
                   "'");
     }
   }
-  if (root["repeat"]) options.repeat = int(whole(in, root["repeat"], "repeat", 1, 1000));
+  if (root["repeat"]) options.repeat = int(in.whole_number(root["repeat"], "repeat", 1, 1000));
   return options;
 }
 

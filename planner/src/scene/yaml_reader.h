@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -68,6 +69,18 @@ class YamlReader {
     }
     if (!std::isfinite(value)) fail(node, key, "must be a finite number, not " + node.Scalar());
     return value;
+  }
+
+  // A whole number in [low, high].
+  std::uint64_t whole_number(const YAML::Node& node, const std::string& key, std::uint64_t low,
+                             std::uint64_t high) const {
+    const double value = number(node, key);
+    if (value != std::floor(value) || value < double(low) || value > double(high)) {
+      fail(node, key,
+           "expected a whole number from " + std::to_string(low) + " to " + std::to_string(high) +
+               ", found '" + node.Scalar() + "'");
+    }
+    return static_cast<std::uint64_t>(value);
   }
 
   std::string text(const YAML::Node& node, const std::string& key) const {

@@ -9,6 +9,7 @@
 
 #include "bench/bench_baseline.h"
 #include "bench/bench_config.h"
+#include "bench/bench_files.h"
 #include "bench/bench_plots.h"
 #include "bench/bench_record.h"
 #include "bench/bench_runner.h"
@@ -18,7 +19,6 @@
 #include "bench/ompl_log.h"
 #include "command_line.h"
 #include "gplanner/planner/checkers/fcl_checker.h"
-#include "gplanner/planner/output/atomic_file.h"
 #include "gplanner/planner/output/output_paths.h"
 #include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/scene/input_file.h"
@@ -74,10 +74,6 @@ void make_output_folder(const std::string& dir) {
   if (error)
     throw UsageError("--out " + dir + ": cannot be made (" + error.message() +
                      "); name a folder that can be created");
-}
-
-void write_text(const std::string& path, const std::string& text) {
-  gplanner::write_file_atomically(path, [&](std::ostream& out) { out << text; });
 }
 
 std::string csv_text(const std::vector<BenchRecord>& records) {
@@ -242,9 +238,7 @@ int run_bench(int argc, char** argv) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   write_text((fs::path(dir) / "results.csv").string(), csv_text(records));
-  write_text((fs::path(dir) / "config.yaml").string(),
-             gplanner::read_input_file(config_file, {"bench configuration", gplanner::kMiB},
-                                       {config_file, 0, ""}));
+  write_config_copy(dir, config_file);
   if (config.kind == "planning") {
     fs::create_directories(fs::path(dir) / "ompl");
     for (std::size_t s = 0; s < scenes.size(); ++s) {

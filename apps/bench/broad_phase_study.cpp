@@ -9,14 +9,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "bench/bench_files.h"
 #include "bench/bench_plots.h"
 #include "bench/broad_phase_motion.h"
 #include "bench/broad_phase_record.h"
 #include "gplanner/collision_gpu/broad_phase.h"
 #include "gplanner/collision_gpu/gpu_broad_phase.h"
-#include "gplanner/planner/output/atomic_file.h"
 #include "gplanner/planner/output/text_escaping.h"
-#include "gplanner/planner/scene/input_file.h"
 #include "interruption.h"
 
 namespace gplan {
@@ -112,10 +111,6 @@ BroadPhasePoint summarize(const MethodRun& run, std::uint64_t count) {
   p.fps_mean = fps / t.size();
   p.pairs_mean = run.pairs_sum / t.size();
   return p;
-}
-
-void write_text(const std::string& path, const std::string& text) {
-  gplanner::write_file_atomically(path, [&](std::ostream& out) { out << text; });
 }
 
 }  // namespace
@@ -245,15 +240,8 @@ int run_broad_phase_study(const BenchConfig& config, const std::string& dir, boo
   write_broad_phase_csv_header(csv);
   for (const BroadPhasePoint& p : points) write_broad_phase_csv_line(csv, p);
   write_broad_phase_table(table, config.name, points, notices);
+  write_study_outputs(dir, config.file, csv.str(), table.str(), partial);
   const std::string results = (fs::path(dir) / "results.csv").string();
-  write_text(results, csv.str());
-  write_text((fs::path(dir) / "results.md").string(), table.str());
-  write_text((fs::path(dir) / "config.yaml").string(),
-             gplanner::read_input_file(config.file, {"bench configuration", gplanner::kMiB},
-                                       {config.file, 0, ""}));
-  fs::remove(partial);
-  std::cout << table.str() << std::flush;
-  std::cerr << "results: " << dir << "\n";
   const bool any_ran =
       std::any_of(points.begin(), points.end(), [](const BroadPhasePoint& p) { return p.ran(); });
   if (plots && !any_ran) std::cerr << "notice: no plots: no method ran\n";

@@ -9,12 +9,12 @@
 #include <memory>
 #include <sstream>
 
+#include "bench/bench_files.h"
 #include "bench/bench_plots.h"
 #include "bench/bench_samples.h"
 #include "bench/error_time_truth.h"
 #include "bench/error_time_workload.h"
 #include "gplanner/planner/checkers/checker_factory.h"
-#include "gplanner/planner/output/atomic_file.h"
 #include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/planning/certified_motions.h"
 #include "gplanner/planner/planning/local_planner.h"
@@ -23,7 +23,6 @@
 #include "gplanner/planner/planning/plan_options.h"
 #include "gplanner/planner/planning/roadmap_planner.h"
 #include "gplanner/planner/planning/scene_metric.h"
-#include "gplanner/planner/scene/input_file.h"
 #include "gplanner/planner/scene/scene.h"
 #include "interruption.h"
 
@@ -369,10 +368,6 @@ class SceneStudy {
   std::vector<StudyChecker> checkers_;
 };
 
-void write_text(const std::string& path, const std::string& text) {
-  gplanner::write_file_atomically(path, [&](std::ostream& out) { out << text; });
-}
-
 }  // namespace
 
 void run_error_time_scene(const gplanner::Scene& scene, const std::string& scene_name,
@@ -419,15 +414,8 @@ int run_error_time_study(const BenchConfig& config, const std::vector<gplanner::
   write_error_time_csv_header(csv);
   for (const ErrorTimePoint& p : points) write_error_time_csv_line(csv, p);
   write_error_time_table(table, config.name, points, notices);
+  write_study_outputs(dir, config.file, csv.str(), table.str(), partial);
   const std::string results = (fs::path(dir) / "results.csv").string();
-  write_text(results, csv.str());
-  write_text((fs::path(dir) / "results.md").string(), table.str());
-  write_text((fs::path(dir) / "config.yaml").string(),
-             gplanner::read_input_file(config.file, {"bench configuration", gplanner::kMiB},
-                                       {config.file, 0, ""}));
-  fs::remove(partial);
-  std::cout << table.str() << std::flush;
-  std::cerr << "results: " << dir << "\n";
   if (plots) {
     std::string notice;
     const std::string plot_dir = (fs::path(dir) / "plots").string();

@@ -1,5 +1,6 @@
 #include "bench_record.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -75,9 +76,20 @@ long long parse_count(const std::string& field) {
   return std::stoll(field);
 }
 
-// One record from its fields (as many as bench_csv_columns()).
-BenchRecord record_from_fields(const std::vector<std::string>& f) {
-  const auto& columns = bench_csv_columns();
+// The columns of CSVs written before check_time_s (runs until issue 22).
+const std::vector<std::string>& columns_before_check_time() {
+  static const std::vector<std::string> columns = [] {
+    std::vector<std::string> all = bench_csv_columns();
+    all.erase(std::find(all.begin(), all.end(), "check_time_s"));
+    return all;
+  }();
+  return columns;
+}
+
+// One record from its fields: as many as bench_csv_columns(), or, with_check_time false
+// (CSVs of runs until issue 22), all but check_time_s.
+BenchRecord record_from_fields(const std::vector<std::string>& f, bool with_check_time = true) {
+  const auto& columns = with_check_time ? bench_csv_columns() : columns_before_check_time();
   if (f.size() != columns.size()) {
     throw std::runtime_error(std::to_string(f.size()) + " fields, not " +
                              std::to_string(columns.size()));
@@ -100,6 +112,7 @@ BenchRecord record_from_fields(const std::vector<std::string>& f) {
     r.length = parse_number(f[column++]);
     r.simplified_length = parse_number(f[column++]);
     r.checks = parse_count(f[column++]);
+    if (with_check_time) r.check_time_s = parse_number(f[column++]);
     r.graph_states = parse_count(f[column++]);
     r.memory_mb = parse_number(f[column++]);
     r.path_check = f[column++];
@@ -118,7 +131,7 @@ const std::vector<std::string>& bench_csv_columns() {
   static const std::vector<std::string> columns = {
       "experiment", "scene",  "planner",       "checker",         "run",
       "seed",       "status", "solved",        "time_s",          "simplify_time_s",
-      "length",     "simplified_length",       "checks",          "graph_states",
+      "length",     "simplified_length",       "checks",          "check_time_s", "graph_states",
       "memory_mb",  "path_check",              "work",            "collisions",
       "note"};
   return columns;
@@ -135,6 +148,7 @@ void write_bench_csv_line(std::ostream& out, const BenchRecord& r) {
       << quoted(r.checker) << ',' << r.run << ',' << r.seed << ',' << quoted(r.status) << ','
       << (r.solved ? 1 : 0) << ',' << number(r.time_s) << ',' << number(r.simplify_time_s) << ','
       << number(r.length) << ',' << number(r.simplified_length) << ',' << count(r.checks) << ','
+      << number(r.check_time_s) << ','
       << count(r.graph_states) << ',' << number(r.memory_mb) << ',' << quoted(r.path_check)
       << ',' << count(r.work) << ',' << count(r.collisions) << ',' << quoted(r.note) << "\n";
 }
@@ -152,6 +166,7 @@ std::vector<BenchRecord> read_bench_csv(const std::string& file) {
   if (!in) throw std::runtime_error(file + ": cannot be read");
   const auto& columns = bench_csv_columns();
   std::vector<BenchRecord> records;
+  bool with_check_time = true;
   std::string line;
   int line_number = 0;
   while (std::getline(in, line)) {
@@ -164,13 +179,14 @@ std::vector<BenchRecord> read_bench_csv(const std::string& file) {
       throw std::runtime_error(file + ":" + std::to_string(first_line) + ": " + e.what());
     }
     if (first_line == 1) {
-      if (f != columns)
+      if (f != columns && f != columns_before_check_time())
         throw std::runtime_error(file + ":1: not a gplan bench CSV (the header differs)");
+      with_check_time = f == columns;
       continue;
     }
     if (f.size() == 1 && f[0].empty()) continue;
     try {
-      records.push_back(record_from_fields(f));
+      records.push_back(record_from_fields(f, with_check_time));
     } catch (const std::exception& e) {
       throw std::runtime_error(file + ":" + std::to_string(first_line) + ": " + e.what());
     }

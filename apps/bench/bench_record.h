@@ -37,6 +37,9 @@ struct BenchRecord {
   double length = kNotMeasured;             // the returned path before simplification
   double simplified_length = kNotMeasured;  // and after it (ours: after shortcutting)
   long long checks = -1;        // state checks (planning) as the planner counted them
+  // OMPL's planners: the part of time_s spent in collision checks (the validity checker
+  // and the motion validator, timed where the planner calls them).
+  double check_time_s = kNotMeasured;
   long long graph_states = -1;  // roadmap or tree vertices at the end of the run
   double memory_mb = kNotMeasured;  // peak resident memory of the run's process
   // The fine re-check of a returned path with FCL: "pass", "fail", or empty (no path).

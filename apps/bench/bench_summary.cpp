@@ -63,7 +63,7 @@ std::vector<GroupSummary> summarize(const std::vector<BenchRecord>& records) {
     members[g.key()].push_back(&r);
   }
   for (GroupSummary& g : groups) {
-    std::vector<double> times, lengths;
+    std::vector<double> times, lengths, check_shares;
     std::vector<std::pair<double, bool>> timed;  // time, found no path
     for (const BenchRecord* r : members[g.key()]) {
       ++g.runs;
@@ -71,6 +71,8 @@ std::vector<GroupSummary> summarize(const std::vector<BenchRecord>& records) {
       if (!r->path_check.empty()) ++g.paths_checked;
       if (r->path_check == "fail") ++g.path_failures;
       if (r->solved) ++g.solved;
+      if (std::isfinite(r->check_time_s) && r->time_s > 0)
+        check_shares.push_back(r->check_time_s / r->time_s);
       if (std::isfinite(r->time_s)) {
         const bool failed = !r->solved && !is_query_table(r->planner);
         timed.push_back({r->time_s, failed});
@@ -94,6 +96,7 @@ std::vector<GroupSummary> summarize(const std::vector<BenchRecord>& records) {
       g.median_is_lower_bound = timed[n / 2].second || (n % 2 == 0 && timed[n / 2 - 1].second);
     }
     g.median_length = median_of(lengths);
+    g.median_check_share = median_of(check_shares);
   }
   // The FCL reference of each group.
   for (GroupSummary& g : groups) {
@@ -122,13 +125,18 @@ std::vector<GroupSummary> summarize(const std::vector<BenchRecord>& records) {
 void print_summary(std::ostream& out, const std::vector<GroupSummary>& groups) {
   std::vector<std::vector<std::string>> rows;
   rows.push_back({"scene", "planner@checker", "runs", "success", "median", "spread (q1-q3)",
-                  "min-max", "path length", "vs FCL", "re-check", "crashes"});
+                  "min-max", "path length", "in checks", "vs FCL", "re-check", "crashes"});
   for (const GroupSummary& g : groups) {
-    std::ostringstream success, length, speedup, recheck;
+    std::ostringstream success, length, in_checks, speedup, recheck;
     const bool table = is_query_table(g.planner);
     success << (table ? "-" : std::to_string(g.solved) + "/" + std::to_string(g.runs));
     if (std::isfinite(g.median_length)) length << std::fixed << std::setprecision(2) << g.median_length;
     else length << "-";
+    if (std::isfinite(g.median_check_share)) {
+      in_checks << std::fixed << std::setprecision(0) << 100 * g.median_check_share << "%";
+    } else {
+      in_checks << "-";
+    }
     if (std::isfinite(g.speedup_over_fcl)) {
       // A median that is a lower bound makes the ratio a bound: at least (">") when the
       // reference's is, at most ("<") when this group's is, unknown ("~") when both are.
@@ -147,7 +155,7 @@ void print_summary(std::ostream& out, const std::vector<GroupSummary>& groups) {
     rows.push_back({g.scene, g.planner + "@" + g.checker, std::to_string(g.runs), success.str(),
                     (g.median_is_lower_bound ? ">" : "") + seconds(g.median_time_s),
                     range(g.q1_time_s, g.q3_time_s), range(g.min_time_s, g.max_time_s), length.str(),
-                    speedup.str(), recheck.str(), std::to_string(g.crashes)});
+                    in_checks.str(), speedup.str(), recheck.str(), std::to_string(g.crashes)});
   }
   std::vector<std::size_t> width(rows[0].size(), 0);
   for (const auto& row : rows)

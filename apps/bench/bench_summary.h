@@ -22,6 +22,9 @@ struct GroupSummary {
   // Median length of the returned paths (after simplification where there was one);
   // NaN with no path.
   double median_length = 0;
+  // OMPL's planners: the median over runs of the share of the plan time spent in
+  // collision checks (check_time_s / time_s); NaN where not measured.
+  double median_check_share = 0;
   int paths_checked = 0;   // returned paths re-checked with FCL
   int path_failures = 0;   // of them, those that failed
   int crashes = 0;         // runs with status crash or error

@@ -168,6 +168,7 @@ Properties run_properties(const BenchRecord& record) {
       {"memory REAL", number(record.memory_mb)},
       {"graph states INTEGER", count(record.graph_states)},
       {"collision checks INTEGER", count(record.checks)},
+      {"collision check time REAL", number(record.check_time_s)},
       {"seed INTEGER", std::to_string(record.seed)},
       {"note STRING", property_value(record.note)},
   };

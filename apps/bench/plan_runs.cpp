@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "bench/peak_memory.h"
+#include "bench/timed_checks.h"
 #include "gplanner/planner/checkers/checker_factory.h"
 #include "gplanner/planner/checkers/fcl_checker.h"
 #include "gplanner/planner/ompl/motion_validator.h"
@@ -97,12 +98,14 @@ BenchRecord run_ompl(const gplanner::Scene& scene, const BenchConfig& config,
   const bool plugin = choice.checker != "fcl";
   og::SimpleSetup setup(gplanner::ompl_adapters::make_state_space(scene));
   const ob::SpaceInformationPtr si = setup.getSpaceInformation();
-  auto validity =
-      std::make_shared<gplanner::ompl_adapters::StateValidityChecker>(si, scene, checker);
+  // Timed: the share of the plan time in collision checks (bench/timed_checks.h).
+  const auto clock = std::make_shared<CheckClock>();
+  auto validity = std::make_shared<TimedStateValidityChecker>(si, scene, checker, clock);
   setup.setStateValidityChecker(validity);
   if (plugin) {
-    si->setMotionValidator(
-        std::make_shared<gplanner::ompl_adapters::MotionValidator>(si, scene, checker));
+    si->setMotionValidator(std::make_shared<TimedMotionValidator>(si, scene, checker, clock));
+  } else {
+    si->setMotionValidator(std::make_shared<TimedDiscreteMotionValidator>(si, clock));
   }
   ob::ScopedState<> start(si), goal(si);
   gplanner::ompl_adapters::row_to_state(scene, scene.start.data(), start.get());
@@ -119,8 +122,10 @@ BenchRecord run_ompl(const gplanner::Scene& scene, const BenchConfig& config,
   const ob::PlannerTerminationCondition stop = ob::plannerOrTerminationCondition(
       ob::timedPlannerTerminationCondition(config.time_limit_s),
       ob::PlannerTerminationCondition(should_stop));
+  const double checked_before = clock->seconds();  // setup's checks (the start, the goal)
   const ob::PlannerStatus status = setup.solve(stop);
   record.time_s = setup.getLastPlanComputationTime();
+  record.check_time_s = clock->seconds() - checked_before;
   record.solved = status == ob::PlannerStatus::EXACT_SOLUTION;
   record.status = record.solved                                            ? "exact"
                   : status == ob::PlannerStatus::APPROXIMATE_SOLUTION     ? "approximate"

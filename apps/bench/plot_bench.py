@@ -40,7 +40,10 @@ from matplotlib.patches import Patch  # noqa: E402
 # The columns of bench_csv_columns() in apps/bench/bench_record.cpp, in order.
 COLUMNS = ["experiment", "scene", "planner", "checker", "run", "seed", "status", "solved",
            "time_s", "simplify_time_s", "length", "simplified_length", "checks",
-           "graph_states", "memory_mb", "path_check", "work", "collisions", "note"]
+           "check_time_s", "graph_states", "memory_mb", "path_check", "work", "collisions",
+           "note"]
+# The columns of CSVs written before check_time_s (runs until issue 22).
+COLUMNS_BEFORE_CHECK_TIME = [c for c in COLUMNS if c != "check_time_s"]
 QUERY_TABLES = {"collision-queries": "collision queries (milestone computation)",
                 "local-planning": "local planning (roadmap edges)"}
 PLANNER_ORDER = ["ours-lazyprm", "ours-prm", "ompl-rrtconnect", "ompl-prm", "ompl-lazyprm"]
@@ -99,17 +102,18 @@ def read_runs(path):
             runs = []
             try:
                 header = next(reader, None)
-                if header != COLUMNS:
+                if header not in (COLUMNS, COLUMNS_BEFORE_CHECK_TIME):
                     raise BadCsv("%s:1: not a gplan bench CSV (the header differs from "
                                  "gplan's: %s)" % (path, ",".join(COLUMNS)))
+                columns = header
                 for fields in reader:
                     line = reader.line_num
                     if fields == []:
                         continue
-                    if len(fields) != len(COLUMNS):
+                    if len(fields) != len(columns):
                         raise BadCsv("%s:%d: %d fields, not %d"
-                                     % (path, line, len(fields), len(COLUMNS)))
-                    row = dict(zip(COLUMNS, fields))
+                                     % (path, line, len(fields), len(columns)))
+                    row = dict(zip(columns, fields))
                     column = ""
                     try:
                         column = "solved"

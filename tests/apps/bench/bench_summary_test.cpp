@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 #include "bench/bench_baseline.h"
@@ -83,6 +84,62 @@ TEST(BenchSummary, PathsThatFailTheRecheckAreCounted) {
   std::ostringstream table;
   print_summary(table, groups);
   EXPECT_NE(table.str().find("1 of 3 FAILED"), std::string::npos) << table.str();
+}
+
+TEST(BenchSummary, TheShareOfThePlanTimeInChecksIsTheMedianOverRuns) {
+  std::vector<BenchRecord> records = sample_records();
+  records[3].check_time_s = 1.8;  // ompl-rrtconnect@fcl: 2 s, 90%
+  records[4].check_time_s = 5;    // 10 s, 50%
+  records[5].check_time_s = 3;    // 4 s, 75%
+  const std::vector<GroupSummary> groups = summarize(records);
+  EXPECT_NEAR(groups[1].median_check_share, 0.75, 1e-12);
+  EXPECT_TRUE(std::isnan(groups[0].median_check_share));  // not measured
+  std::ostringstream table;
+  print_summary(table, groups);
+  EXPECT_NE(table.str().find("in checks"), std::string::npos) << table.str();
+  EXPECT_NE(table.str().find(" 75% "), std::string::npos) << table.str();
+}
+
+TEST(BenchRecord, CsvsWrittenBeforeTheCheckTimeColumnAreStillRead) {
+  const gplanner::testing::ScratchFolder folder;
+  const std::string file = folder.path() + "/old.csv";
+  {
+    std::ofstream out(file);
+    out << "experiment,scene,planner,checker,run,seed,status,solved,time_s,simplify_time_s,"
+           "length,simplified_length,checks,graph_states,memory_mb,path_check,work,"
+           "collisions,note\n"
+           "e,s,ompl-prm,fcl,0,1,exact,1,2.5,,10,,300,40,20,pass,,,\n";
+  }
+  const std::vector<BenchRecord> records = read_bench_csv(file);
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_EQ(records[0].checks, 300);
+  EXPECT_EQ(records[0].graph_states, 40);
+  EXPECT_TRUE(std::isnan(records[0].check_time_s));
+  // And this version's, the check time written and read back.
+  BenchRecord record = records[0];
+  record.check_time_s = 1.25;
+  const std::string now = folder.path() + "/now.csv";
+  {
+    std::ofstream out(now);
+    write_bench_csv_header(out);
+    write_bench_csv_line(out, record);
+  }
+  const std::vector<BenchRecord> again = read_bench_csv(now);
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_DOUBLE_EQ(again[0].check_time_s, 1.25);
+  EXPECT_EQ(again[0].graph_states, 40);
+  // A record of the old width under this version's header is refused, naming the line.
+  {
+    std::ofstream out(now, std::ios::app);
+    out << "e,s,ompl-prm,fcl,0,1,exact,1,2.5,,10,,300,40,20,pass,,,\n";
+  }
+  try {
+    read_bench_csv(now);
+    ADD_FAILURE() << "a short record was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("now.csv:3: 19 fields, not 20"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(BenchBaseline, WithinToleranceAndEachPlantedRegression) {

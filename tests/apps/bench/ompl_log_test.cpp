@@ -323,22 +323,22 @@ TEST(OmplLog, HostileNamesAreMadeSafeForTheFormat) {
   EXPECT_EQ(lines[head.size()].rfind("status|Unknown status|Invalid start|", 0), 0u)
       << lines[head.size()];
 
-  // The planner: its name, 3 common properties, 13 run properties, 1 run, ".".
+  // The planner: its name, 3 common properties, 14 run properties, 1 run, ".".
   const std::size_t planner = head.size() + 2;
   EXPECT_EQ(lines[planner - 1], "1 planners");
   EXPECT_EQ(lines[planner], "geometric_PRM_cpu");
   EXPECT_EQ(lines[planner + 1], "3 common properties");
-  EXPECT_EQ(lines[planner + 5], "13 properties for each run");
-  EXPECT_EQ(lines[planner + 11], "note STRING");
-  EXPECT_EQ(lines[planner + 19], "1 runs");
-  const std::string& values = lines[planner + 20];
+  EXPECT_EQ(lines[planner + 5], "14 properties for each run");
+  EXPECT_EQ(lines[planner + 12], "note STRING");
+  EXPECT_EQ(lines[planner + 20], "1 runs");
+  const std::string& values = lines[planner + 21];
   int fields = 0;
   for (std::size_t at = values.find("; "); at != std::string::npos; at = values.find("; ", at + 2))
     ++fields;
-  EXPECT_EQ(fields, 13) << values;
+  EXPECT_EQ(fields, 14) << values;
   EXPECT_NE(values.find("fell back, to cpu\\n|>>>, ; "), std::string::npos) << values;
-  EXPECT_EQ(lines[planner + 21], ".");
-  EXPECT_EQ(lines.size(), planner + 22);
+  EXPECT_EQ(lines[planner + 22], ".");
+  EXPECT_EQ(lines.size(), planner + 23);
 }
 
 TEST(OmplLog, HostileNamesReadBackThroughOmplBenchmarkStatistics) {

@@ -52,9 +52,9 @@ GpuChecker::GpuChecker(const CollisionModel& model, const Scene& scene,
   if (options.host_calls_up_to == GpuCheckerOptions::kAuto) {
     measure_routing(scene);
   } else {
-    // Up to the given size on the host: the thread pool's loops run calls of up to a
-    // chunk (16 configurations) on the calling thread alone.
-    routing_.calling_thread_up_to = std::min<std::size_t>(options.host_calls_up_to, 16);
+    // Up to the given size on the host: calls of up to 4 configurations on the calling
+    // thread (where the pool's helpers would take longer to wake than to help).
+    routing_.calling_thread_up_to = std::min<std::size_t>(options.host_calls_up_to, 4);
     routing_.host_threads_up_to = options.host_calls_up_to;
   }
 }
@@ -95,8 +95,7 @@ void GpuChecker::measure_routing(const Scene& scene) {
   for (const std::size_t n : sizes) {
     r.gpu_seconds.push_back(median_of_calls(
         n, [&](const float* rows, std::size_t m) { gpu_.check(rows, m, verdicts.data()); }));
-    // Host calls of up to a chunk of the pool's loops run on the calling thread alone;
-    // once the pool is twice as slow as the GPU, larger calls are not timed there.
+    // Once the pool is twice as slow as the GPU, larger calls are not timed there.
     r.host_threads_seconds.push_back(host_still_competes
                                          ? median_of_calls(n,
                                                            [&](const float* rows, std::size_t m) {
@@ -106,26 +105,32 @@ void GpuChecker::measure_routing(const Scene& scene) {
                                          : 1e30);
     host_still_competes = r.host_threads_seconds.back() < 2 * r.gpu_seconds.back();
   }
-  // The host while it beats the GPU, from the smallest call up (powers of two); calls of
-  // up to a chunk (16) run on the calling thread, larger ones on the pool.
-  const auto host = [&](std::size_t n) {
-    return std::min(r.host_seconds_per_configuration * n,
-                    interpolate(sizes, r.host_threads_seconds, n));
-  };
+  // The host while it beats the GPU, from the smallest call up (powers of two); on the
+  // calling thread while it beats the pool (whose calls of a few configurations still
+  // pay for waking helpers), larger calls on the pool.
+  const auto calling_thread = [&](std::size_t n) { return r.host_seconds_per_configuration * n; };
+  const auto pool = [&](std::size_t n) { return interpolate(sizes, r.host_threads_seconds, n); };
   const auto gpu = [&](std::size_t n) { return interpolate(sizes, r.gpu_seconds, n); };
-  for (std::size_t n = 1; n <= sizes.back() && host(n) <= gpu(n); n *= 2) r.host_threads_up_to = n;
-  r.calling_thread_up_to = std::min<std::size_t>(r.host_threads_up_to, 16);
+  for (std::size_t n = 1; n <= sizes.back() && std::min(calling_thread(n), pool(n)) <= gpu(n);
+       n *= 2)
+    r.host_threads_up_to = n;
+  for (std::size_t n = 1; n <= r.host_threads_up_to && calling_thread(n) <= pool(n); n *= 2)
+    r.calling_thread_up_to = n;
 }
 
 void GpuChecker::route(const float* configurations, std::size_t n, const float* clearances,
                        std::uint8_t* verdicts) {
-  if (n <= routing_.calling_thread_up_to) {
-    host_.check(configurations, n, verdicts, clearances, 1);
-  } else if (n <= routing_.host_threads_up_to) {
-    host_.check(configurations, n, verdicts, clearances, host_threads_);
+  if (n <= routing_.host_threads_up_to) {
+    check_on_host(configurations, n, clearances, verdicts);
   } else {
     gpu_.check(configurations, n, verdicts, clearances);
   }
+}
+
+void GpuChecker::check_on_host(const float* configurations, std::size_t n,
+                               const float* clearances, std::uint8_t* verdicts) {
+  const int threads = n <= routing_.calling_thread_up_to ? 1 : host_threads_;
+  host_.check(configurations, n, verdicts, clearances, threads);
 }
 
 void GpuChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts) {

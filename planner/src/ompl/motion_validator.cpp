@@ -21,7 +21,7 @@ MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, cons
       scene_(scene),
       checker_(checker),
       local_(scene, checker, options),
-      calling_thread_local_(scene, checker->calling_thread_checker(), options),
+      host_local_(scene, checker->host_checker(), options),
       follows_space_resolution_(false),
       certifier_(scene, checker) {}
 
@@ -32,7 +32,7 @@ MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, cons
       scene_(scene),
       checker_(checker),
       local_(scene, checker, plan_options(scene).local),
-      calling_thread_local_(scene, checker->calling_thread_checker(), plan_options(scene).local),
+      host_local_(scene, checker->host_checker(), plan_options(scene).local),
       edges_(edges),
       follows_space_resolution_(!(plan_options(scene).local.max_displacement > 0)),
       certifier_(scene, checker, certified) {}
@@ -56,8 +56,8 @@ bool MotionValidator::certified_free(const float* a, const float* b) const {
 
 bool MotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const {
   // As OMPL's DiscreteMotionValidator: the end state first, then the samples between,
-  // coarse to fine, up to the first collision (on the calling thread where the checker
-  // answers small calls there).
+  // coarse to fine, up to the first collision (on the host where the checker answers
+  // small calls there).
   if (!si_->satisfiesBounds(s2)) {
     count(0, 1);
     return false;
@@ -78,8 +78,8 @@ bool MotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base:
 bool MotionValidator::sampled_free(const float* a, const float* b, int segments) const {
   const auto by_levels = [&] {
     std::uint8_t end = 1, between = 1;
-    checker_->calling_thread_checker()->check(b, 1, &end);
-    return end == 0 && calling_thread_local_.check_motions(a, b, 1, &segments, &between) &&
+    checker_->host_checker()->check(b, 1, &end);
+    return end == 0 && host_local_.check_motions(a, b, 1, &segments, &between) &&
            between == 0;
   };
   if (checker_->configurations_per_call_cost() == 0) return by_levels();  // calls cost nothing

@@ -56,10 +56,11 @@ class CollisionChecker {
   // configurations (a motion's samples, coarse to fine) check them a few at a time up to
   // this size, stopping at the first collision. The CPU backends: every size.
   virtual std::size_t cheap_calls_up_to() const { return ~std::size_t(0); }
-  // The same checks answered on the calling thread whatever their size (no GPU call, no
-  // helper threads): for a caller that checks a few configurations at a time and stops
-  // early, where none of its calls would pay for more. The CPU backends: themselves.
-  virtual CollisionChecker* calling_thread_checker() { return this; }
+  // The same checks answered on the host whatever their size, never in a GPU call: on
+  // the calling thread, and on the thread pool where the checker measured that the pool
+  // is faster. For a caller that checks a few configurations at a time and stops early,
+  // where a GPU call's fixed cost would not pay. The CPU backends: themselves.
+  virtual CollisionChecker* host_checker() { return this; }
   bool in_collision(const float* configuration) {
     std::uint8_t verdict = 0;
     check(configuration, 1, &verdict);

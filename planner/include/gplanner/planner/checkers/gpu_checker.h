@@ -55,7 +55,7 @@ class GpuChecker : public CollisionChecker {
   std::size_t configurations_per_call_cost() const override { return 8192; }
   // Calls the host answers: no GPU call's fixed cost.
   std::size_t cheap_calls_up_to() const override { return routing_.host_threads_up_to; }
-  CollisionChecker* calling_thread_checker() override { return &calling_thread_; }
+  CollisionChecker* host_checker() override { return &host_only_; }
 
   // Of the last check() on the GPU to finish (calls answered on the host leave it as is).
   GpuCheckStats last_stats() const { return gpu_.last_stats(); }
@@ -64,27 +64,31 @@ class GpuChecker : public CollisionChecker {
   const HostCallRouting& routing() const { return routing_; }
 
  private:
-  // The host core on the calling thread, for calling_thread_checker().
-  class CallingThread : public CollisionChecker {
+  // The host core, for host_checker(): calls routed as route() routes them, except that
+  // those the GPU would take go to the thread pool.
+  class HostOnly : public CollisionChecker {
    public:
-    explicit CallingThread(CpuBatchChecker* host) : host_(host) {}
+    explicit HostOnly(GpuChecker* owner) : owner_(owner) {}
     std::string backend() const override { return "gpu"; }
     void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override {
-      host_->check(configurations, n, verdicts, nullptr, 1);
+      owner_->check_on_host(configurations, n, nullptr, verdicts);
     }
     void check_clearances(const float* configurations, std::size_t n, const float* clearances,
                           std::uint8_t* verdicts) override {
-      host_->check(configurations, n, verdicts, clearances, 1);
+      owner_->check_on_host(configurations, n, clearances, verdicts);
     }
 
    private:
-    CpuBatchChecker* host_;
+    GpuChecker* owner_;
   };
 
   GpuChecker(const CollisionModel& model, const Scene& scene, const GpuCheckerOptions& options,
              int host_threads);
   void route(const float* configurations, std::size_t n, const float* clearances,
              std::uint8_t* verdicts);
+  // The calling thread for calls of up to routing_.calling_thread_up_to, else the pool.
+  void check_on_host(const float* configurations, std::size_t n, const float* clearances,
+                     std::uint8_t* verdicts);
   void measure_routing(const Scene& scene);
 
   Traversal traversal_;
@@ -92,7 +96,7 @@ class GpuChecker : public CollisionChecker {
   CpuBatchChecker host_;
   int host_threads_;
   HostCallRouting routing_;
-  CallingThread calling_thread_{&host_};
+  HostOnly host_only_{this};
 };
 
 }  // namespace gplanner

@@ -4,8 +4,9 @@
 // OMPL's DiscreteMotionValidator does) sampled at the scene's edge resolution. As
 // OMPL's, a single motion is checked end state first, then coarse to fine (the
 // midpoint, the quarter points, ...), stopping at the first collision; with lastValid,
-// in order from the start. Small calls are answered on the calling thread
-// (CollisionChecker::cheap_calls_up_to), so one motion costs what its samples cost.
+// in order from the start. Small calls are answered on the host (the calling thread,
+// or the thread pool where it pays: CollisionChecker::host_checker), so one motion costs
+// what its samples cost.
 // Keeps OMPL's valid and invalid motion counters.
 // Calls from any number of threads run at once, each with its own samples (every
 // backend takes concurrent calls; see collision_checker.h for which run in parallel);
@@ -81,16 +82,17 @@ class MotionValidator : public ompl::base::MotionValidator {
   CollisionChecker* checker_;
   mutable std::mutex counters_mutex_;
   mutable LocalPlanner local_;  // takes concurrent calls
-  // The same on the checker's calling-thread checks (single motions level by level).
-  mutable LocalPlanner calling_thread_local_;
+  // The same on the checker's host checks (single motions level by level).
+  mutable LocalPlanner host_local_;
   EdgeChecks edges_ = EdgeChecks::kSampled;
   bool follows_space_resolution_ = true;  // segments(): OMPL's count
   mutable CertifiedMotions certifier_;    // takes concurrent calls
 
   // A single motion on a checker with a fixed cost per call (the gpu backend) is checked
   // one of two ways: level by level from the end state up to the first collision, every
-  // level on the calling thread (CollisionChecker::calling_thread_checker), or every
-  // sample and the end in one call (one GPU call). Which costs less depends on the robot
+  // level on the host (CollisionChecker::host_checker: the calling thread, the pool for
+  // levels where it is faster), or every sample and the end in one call (routed: one GPU
+  // call where the motion has more samples than the host's crossover). Which costs less depends on the robot
   // and on how often motions collide early, so both are timed on the calls themselves:
   // the way with the lower running mean is taken, the other every 16th call.
   struct ChoiceOfWay {

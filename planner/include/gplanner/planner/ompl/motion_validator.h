@@ -88,10 +88,11 @@ class MotionValidator : public ompl::base::MotionValidator {
   bool follows_space_resolution_ = true;  // segments(): OMPL's count
   mutable CertifiedMotions certifier_;    // takes concurrent calls
 
-  // A single motion on a checker with a fixed cost per call (the gpu backend) is checked
-  // one of two ways: level by level from the end state up to the first collision, every
-  // level on the host (CollisionChecker::host_checker: the calling thread, the pool for
-  // levels where it is faster), or every sample and the end in one call (routed: one GPU
+  // A single motion on a checker with a fixed cost per call (the gpu backend): its end
+  // state on the host first (most motions an RRT tries end in collision), then, where the
+  // end is free, the samples between one of two ways: level by level up to the first
+  // collision, every level on the host (CollisionChecker::host_checker: the calling
+  // thread, the pool for levels where it is faster), or all in one call (routed: one GPU
   // call where the motion has more samples than the host's crossover). Which costs less depends on the robot
   // and on how often motions collide early, so both are timed on the calls themselves:
   // the way with the lower running mean is taken, the other every 16th call.

@@ -6,6 +6,10 @@ usage: bench/format_bench_tables.py seed RUN_DIR      the seed's three tables (R
                                                      seed_pr2/)
        bench/format_bench_tables.py regression DIR   a planning run: median (solved/runs) per
                                                      scene and planner@checker
+       bench/format_bench_tables.py plugin DIR       OMPL's planners with FCL and through the
+                                                     plugin (gpu, cpu): medians, the share of
+                                                     FCL's time in checks and what it bounds,
+                                                     the ratios to FCL
 """
 import csv
 import statistics
@@ -107,8 +111,59 @@ def regression(directory):
         print("| %s | %s |" % (scene, " | ".join(cells)))
 
 
+def group_median(runs):
+    """(median time, whether it is a lower bound, solved, runs, median share in checks)."""
+    times = sorted((float(r["time_s"]), r["solved"] == "1") for r in runs if r["time_s"])
+    n = len(times)
+    median = statistics.median(t for t, _ in times)
+    bound = (not times[n // 2][1]) or (n % 2 == 0 and not times[n // 2 - 1][1])
+    shares = [float(r["check_time_s"]) / float(r["time_s"]) for r in runs
+              if r.get("check_time_s") and r["time_s"] and float(r["time_s"]) > 0]
+    return (median, bound, sum(r["solved"] == "1" for r in runs), len(runs),
+            statistics.median(shares) if shares else None)
+
+
+def ratio(reference, ours):
+    """FCL's median over ours, marked as gplan bench's summary marks bounds."""
+    if ours[0] <= 0:
+        return "-"
+    if reference[1] and ours[1]:
+        return "-"  # both lower bounds: unknown
+    return "%s%.3gx" % (">" if reference[1] else "<" if ours[1] else "", reference[0] / ours[0])
+
+
+def plugin(directory):
+    g = groups(read(directory + "/results.csv"))
+    scenes, planners = [], []
+    for scene, planner, _ in g:
+        if scene not in scenes:
+            scenes.append(scene)
+        if planner not in planners:
+            planners.append(planner)
+    print("| scene | planner | @fcl | in checks @fcl (at most, checks free) | @gpu | vs FCL "
+          "| in checks @gpu | @cpu | vs FCL |")
+    print("|" + " --- |" * 9)
+
+    def cell(m):
+        return "%s%.3g s, %d/%d" % (">" if m[1] else "", m[0], m[2], m[3])
+
+    def share(m):
+        return "-" if m[4] is None else "%.0f%%" % (100 * m[4])
+
+    for scene in scenes:
+        for planner in planners:
+            if any((scene, planner, c) not in g for c in ("fcl", "gpu", "cpu")):
+                continue
+            fcl, gpu, cpu = (group_median(g[(scene, planner, c)]) for c in ("fcl", "gpu", "cpu"))
+            most = ("-" if fcl[4] is None else ">200x" if fcl[4] >= 0.995
+                    else "%.3gx" % (1 / (1 - fcl[4])))
+            print("| %s | %s | %s | %s (%s) | %s | %s | %s | %s | %s |" % (
+                scene, planner.replace("ompl-", ""), cell(fcl), share(fcl), most, cell(gpu),
+                ratio(fcl, gpu), share(gpu), cell(cpu), ratio(fcl, cpu)))
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 3 or sys.argv[1] not in ("seed", "regression"):
+    if len(sys.argv) != 3 or sys.argv[1] not in ("seed", "regression", "plugin"):
         sys.exit(__doc__)
     if sys.argv[1] == "seed":
         print("Table 1: collision queries\n")
@@ -117,5 +172,7 @@ if __name__ == "__main__":
         query_table(sys.argv[2] + "/seed_local_planning", "local-planning", SEED_LOCAL)
         print("\nTable 3: the PR2\n")
         pr2_table(sys.argv[2] + "/seed_pr2")
+    elif sys.argv[1] == "plugin":
+        plugin(sys.argv[2])
     else:
         regression(sys.argv[2])

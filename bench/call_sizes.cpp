@@ -119,7 +119,8 @@ int main(int argc, char** argv) {
     std::cout << "gpu backend routing (measured): calls of up to " << r.calling_thread_up_to
               << " configurations on the calling thread, up to " << r.host_threads_up_to
               << " on host threads, larger on the GPU; one state on one host thread "
-              << microseconds(r.host_seconds_per_configuration) << "\n\n";
+              << microseconds(r.host_seconds_per_configuration)
+              << " (the mean over 256 uniform samples)\n\n";
   }
   std::cout << "| configurations per call |";
   for (const Named& c : checkers) std::cout << " " << c.name << " |";

@@ -91,24 +91,32 @@ void GpuChecker::measure_routing(const Scene& scene) {
   r.host_seconds_per_configuration =
       fastest_seconds(1, [&] { host_.check(q.data(), host_sample, verdicts.data(), nullptr, 1); }) /
       host_sample;
-  bool host_still_competes = true;
+  // Each way timed alike, on the same rows; once the pool is twice as slow as the GPU,
+  // or the calling thread twice as slow as the faster of them, larger calls are not timed
+  // there.
+  bool pool_still_competes = true, calling_thread_still_competes = true;
+  const auto on_host = [&](int threads) {
+    return [&, threads](const float* rows, std::size_t m) {
+      host_.check(rows, m, verdicts.data(), nullptr, threads);
+    };
+  };
   for (const std::size_t n : sizes) {
     r.gpu_seconds.push_back(median_of_calls(
         n, [&](const float* rows, std::size_t m) { gpu_.check(rows, m, verdicts.data()); }));
-    // Once the pool is twice as slow as the GPU, larger calls are not timed there.
-    r.host_threads_seconds.push_back(host_still_competes
-                                         ? median_of_calls(n,
-                                                           [&](const float* rows, std::size_t m) {
-                                                             host_.check(rows, m, verdicts.data(),
-                                                                         nullptr, host_threads_);
-                                                           })
-                                         : 1e30);
-    host_still_competes = r.host_threads_seconds.back() < 2 * r.gpu_seconds.back();
+    r.host_threads_seconds.push_back(
+        pool_still_competes ? median_of_calls(n, on_host(host_threads_)) : 1e30);
+    r.calling_thread_seconds.push_back(
+        calling_thread_still_competes ? median_of_calls(n, on_host(1)) : 1e30);
+    const double faster = std::min(r.gpu_seconds.back(), r.host_threads_seconds.back());
+    pool_still_competes = r.host_threads_seconds.back() < 2 * r.gpu_seconds.back();
+    calling_thread_still_competes = r.calling_thread_seconds.back() < 2 * faster;
   }
   // The host while it beats the GPU, from the smallest call up (powers of two); on the
   // calling thread while it beats the pool (whose calls of a few configurations still
   // pay for waking helpers), larger calls on the pool.
-  const auto calling_thread = [&](std::size_t n) { return r.host_seconds_per_configuration * n; };
+  const auto calling_thread = [&](std::size_t n) {
+    return interpolate(sizes, r.calling_thread_seconds, n);
+  };
   const auto pool = [&](std::size_t n) { return interpolate(sizes, r.host_threads_seconds, n); };
   const auto gpu = [&](std::size_t n) { return interpolate(sizes, r.gpu_seconds, n); };
   for (std::size_t n = 1; n <= sizes.back() && std::min(calling_thread(n), pool(n)) <= gpu(n);

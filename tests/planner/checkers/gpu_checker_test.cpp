@@ -174,14 +174,14 @@ TEST(GpuChecker, RoutesCallsOfEverySizeByMeasuredCrossovers) {
     EXPECT_GT(r.host_seconds_per_configuration, 0.0) << name;
     for (const double t : r.gpu_seconds) EXPECT_GT(t, 0.0) << name;
     EXPECT_LE(r.calling_thread_up_to, r.host_threads_up_to) << name;
-    // The calling thread where it beat the pool (its cost per state times the size).
+    ASSERT_EQ(r.sizes.size(), r.calling_thread_seconds.size()) << name;
+    // The calling thread where it beat the pool, as measured.
     for (std::size_t i = 0; i < r.sizes.size() && r.sizes[i] <= r.calling_thread_up_to; ++i)
-      EXPECT_LE(r.host_seconds_per_configuration * r.sizes[i], r.host_threads_seconds[i])
-          << name << " " << r.sizes[i];
+      EXPECT_LE(r.calling_thread_seconds[i], r.host_threads_seconds[i]) << name << " " << r.sizes[i];
     // The first decision as the measurements say: one state on the host when that beat a
     // GPU call of one state.
     EXPECT_EQ(r.host_threads_up_to > 0,
-              std::min(r.host_seconds_per_configuration, r.host_threads_seconds.front()) <=
+              std::min(r.calling_thread_seconds.front(), r.host_threads_seconds.front()) <=
                   r.gpu_seconds.front())
         << name;
     std::cout << name << ": calling thread up to " << r.calling_thread_up_to

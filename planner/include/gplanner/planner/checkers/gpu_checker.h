@@ -36,6 +36,9 @@ struct HostCallRouting {
   // shape [k]: a host call of sizes[i] (median; 1e30 where not timed: the sizes after
   // one at which the host took twice the GPU's time)
   std::vector<double> host_threads_seconds;
+  // shape [k]: the same call on the calling thread (median; 1e30 where not timed: the
+  // sizes after one at which it took twice the time of the faster of the pool and the GPU)
+  std::vector<double> calling_thread_seconds;
 };
 
 class GpuChecker : public CollisionChecker {

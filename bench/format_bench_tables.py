@@ -6,6 +6,9 @@ usage: bench/format_bench_tables.py seed RUN_DIR      the seed's three tables (R
                                                      seed_pr2/)
        bench/format_bench_tables.py regression DIR   a planning run: median (solved/runs) per
                                                      scene and planner@checker
+       bench/format_bench_tables.py call-sizes FILE  gplanner_call_sizes' output on every scene
+                                                     (reproduce.sh's call_sizes.md): routing, one
+                                                     state, 16 states, one checkMotion
        bench/format_bench_tables.py plugin DIR       OMPL's planners with FCL and through the
                                                      plugin (gpu, cpu): medians, the share of
                                                      FCL's time in checks and what it bounds,
@@ -162,8 +165,46 @@ def plugin(directory):
                 ratio(fcl, gpu), share(gpu), cell(cpu), ratio(fcl, cpu)))
 
 
+def call_sizes(path):
+    """One row per scene from the Markdown gplanner_call_sizes prints."""
+    scenes, scene = [], None
+    with open(path) as f:
+        for line in f:
+            line = line.strip()
+            if line.startswith("## "):
+                scene = {"name": line[3:].split("/")[-1].replace(".yaml", ""), "rows": {}}
+                scenes.append(scene)
+            elif line.startswith("gpu backend routing") and scene:
+                words = line.split()
+                scene["calling"] = words[words.index("calling") - 4]
+                scene["host"] = words[words.index("host") - 2]
+            elif (line.startswith("| configurations per call") or
+                  line.startswith("| one checkMotion")) and scene:
+                scene["columns"] = [c.strip() for c in line.strip("|").split("|")]
+            elif line.startswith("|") and scene and "columns" in scene:
+                cells = [c.strip() for c in line.strip("|").split("|")]
+                scene["rows"][cells[0]] = dict(zip(scene["columns"], cells))
+    print("| scene | host up to (calling thread) | one state: routed / GPU alone / our core, 1 "
+          "thread / FCL, 1 thread | 16 states: routed / our core, all cores / FCL, 1 thread "
+          "| one checkMotion, mean: routed / our core, 1 thread / FCL + DiscreteMotionValidator "
+          "| routed vs FCL, one checkMotion |")
+    print("|" + " --- |" * 6)
+    for sc in sorted(scenes, key=lambda x: x["name"]):
+        r = sc["rows"]
+        one, sixteen = r["1"], r["16"]
+        motion = {k: v["mean"].split(" (")[0] for k, v in r.items() if "mean" in v}
+        routed = motion["gpu (routed), our motion validator"]
+        fcl = motion["FCL, 1 thread, OMPL's DiscreteMotionValidator"]
+        print("| %s | %s (%s) | %s / %s / %s / %s | %s / %s / %s | %s / %s / %s | %.1fx |" % (
+            sc["name"], sc["host"], sc["calling"], one["gpu (routed)"], one["GPU alone"],
+            one["our core, 1 thread"], one["FCL, 1 thread"], sixteen["gpu (routed)"],
+            sixteen["our core, all cores"], sixteen["FCL, 1 thread"], routed,
+            motion["our core, 1 thread, our motion validator"], fcl,
+            float(fcl.split()[0]) / float(routed.split()[0])))
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 3 or sys.argv[1] not in ("seed", "regression", "plugin"):
+    if len(sys.argv) != 3 or sys.argv[1] not in ("seed", "regression", "plugin", "call-sizes"):
         sys.exit(__doc__)
     if sys.argv[1] == "seed":
         print("Table 1: collision queries\n")
@@ -174,5 +215,7 @@ if __name__ == "__main__":
         pr2_table(sys.argv[2] + "/seed_pr2")
     elif sys.argv[1] == "plugin":
         plugin(sys.argv[2])
+    elif sys.argv[1] == "call-sizes":
+        call_sizes(sys.argv[2])
     else:
         regression(sys.argv[2])

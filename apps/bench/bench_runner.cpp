@@ -18,6 +18,7 @@
 
 #include "bench/plan_runs.h"
 #include "bench/query_runs.h"
+#include "gplanner/common/parallel_for.h"
 #include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/scene/scene.h"
 #include "interruption.h"
@@ -41,7 +42,8 @@ void send(int fd, char type, const std::string& payload) {
 }
 
 [[noreturn]] void run_worker(int fd, const BenchConfig& config, const gplanner::Scene& scene,
-                             const BenchGroup& group, const std::string& failed_paths_dir) {
+                             const BenchGroup& group, int host_threads,
+                             const std::string& failed_paths_dir) {
   const auto emit = [fd](const BenchRecord& record) {
     std::ostringstream line;
     write_bench_csv_line(line, record);
@@ -51,8 +53,8 @@ void send(int fd, char type, const std::string& payload) {
   const auto should_stop = [] { return interrupted(); };
   try {
     if (config.kind == "planning") {
-      run_planning_group(scene, group.scene_name, config, group.choice, emit, should_stop, notice,
-                         failed_paths_dir);
+      run_planning_group(scene, group.scene_name, config, group.choice, host_threads, emit,
+                         should_stop, notice, failed_paths_dir);
     } else {
       QueryTableOptions options;
       options.queries = config.queries;
@@ -156,6 +158,11 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
   std::size_t next = 0;  // the first group not started
   // A planning run with no result this long after the last is killed.
   const double silence_limit_s = 2 * config.time_limit_s + 120;
+  // The host threads of a group beside others: an OMPL planner on the gpu backend answers
+  // small calls on the host's thread pool, which gets the cores the other `jobs` - 1
+  // single-threaded groups leave, so that neither it nor FCL's runs beside it are
+  // handicapped by the other. Groups that run alone get every core (0).
+  const int beside_others_threads = std::max(1, gplanner::resolve_thread_count(0) - (jobs - 1));
 
   const auto start_worker = [&](std::size_t g) {
     int fds[2];
@@ -166,7 +173,8 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
     if (pid == 0) {
       ::close(fds[0]);
       for (const Worker& other : running) ::close(other.fd);
-      run_worker(fds[1], config, scenes[groups[g].scene], groups[g], failed_paths_dir);
+      run_worker(fds[1], config, scenes[groups[g].scene], groups[g],
+                 groups[g].alone ? 0 : beside_others_threads, failed_paths_dir);
     }
     ::close(fds[1]);
     Worker worker;

@@ -8,7 +8,8 @@
 // or a run far past its time limit (killed), costs that run (recorded as "crash"), not
 // the benchmark. Groups that use several cores (ours, the cpu backend, the query tables)
 // run alone; OMPL's planners on one planning thread (PlannerChoice::single_threaded) run
-// up to `jobs` at a time, at most one of them on the GPU.
+// up to `jobs` at a time, at most one of them on the GPU, whose checker answers small
+// calls on the cores the others leave (all cores less `jobs` - 1).
 
 #include <functional>
 #include <iosfwd>

@@ -183,7 +183,7 @@ BenchRecord run_ours(const gplanner::Scene& scene, const BenchConfig& config,
 }  // namespace
 
 void run_planning_group(const gplanner::Scene& scene, const std::string& scene_name,
-                        const BenchConfig& config, const PlannerChoice& choice,
+                        const BenchConfig& config, const PlannerChoice& choice, int host_threads,
                         const std::function<void(const BenchRecord&)>& emit,
                         const std::function<bool()>& should_stop,
                         const std::function<void(const std::string&)>& notice,
@@ -199,7 +199,9 @@ void run_planning_group(const gplanner::Scene& scene, const std::string& scene_n
     checker = std::make_unique<gplanner::FclChecker>(scene, /*threads=*/1);
   } else {
     std::string fallback;
-    checker = gplanner::make_collision_checker(scene, choice.checker, {}, &fallback);
+    gplanner::CheckerOptions options;
+    options.threads = host_threads;
+    checker = gplanner::make_collision_checker(scene, choice.checker, options, &fallback);
     if (checker->backend() != choice.checker)
       throw std::runtime_error(fallback_refusal(choice.label(), fallback));
   }

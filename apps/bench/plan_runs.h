@@ -32,8 +32,9 @@ namespace gplan {
 // `should_stop` says so (it is also polled during a solve). `notice` receives what the
 // user should know once (the k-NN's fallback). A gpu checker that would run on the cpu
 // backend (no GPU here) throws: its times would be the cpu's under a gpu name.
+// host_threads: the host threads our checker may use (0: all cores).
 void run_planning_group(const gplanner::Scene& scene, const std::string& scene_name,
-                        const BenchConfig& config, const PlannerChoice& choice,
+                        const BenchConfig& config, const PlannerChoice& choice, int host_threads,
                         const std::function<void(const BenchRecord&)>& emit,
                         const std::function<bool()>& should_stop,
                         const std::function<void(const std::string&)>& notice,

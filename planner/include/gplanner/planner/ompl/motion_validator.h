@@ -93,9 +93,10 @@ class MotionValidator : public ompl::base::MotionValidator {
   // end is free, the samples between one of two ways: level by level up to the first
   // collision, every level on the host (CollisionChecker::host_checker: the calling
   // thread, the pool for levels where it is faster), or all in one call (routed: one GPU
-  // call where the motion has more samples than the host's crossover). Which costs less depends on the robot
-  // and on how often motions collide early, so both are timed on the calls themselves:
-  // the way with the lower running mean is taken, the other every 16th call.
+  // call where the motion has more samples than the host's crossover). Which costs less
+  // depends on the robot and on how often motions collide early, so both are timed on the
+  // calls themselves: the way with the lower running mean is taken, the other every 16th
+  // call.
   struct ChoiceOfWay {
     std::mutex mutex;
     double mean_seconds[2] = {0, 0};  // [levels, one call]

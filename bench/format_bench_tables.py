@@ -85,35 +85,6 @@ def pr2_table(directory):
             t["fcl"] / t["gpu-balanced"], s[0] / s[1]))
 
 
-def regression(directory):
-    rows = read(directory + "/results.csv")
-    g = groups(rows)
-    scenes, labels = [], []
-    for scene, planner, checker in g:
-        if scene not in scenes:
-            scenes.append(scene)
-        if planner + "@" + checker not in labels:
-            labels.append(planner + "@" + checker)
-    print("| scene | " + " | ".join(labels) + " |")
-    print("|" + " --- |" * (len(labels) + 1))
-    for scene in scenes:
-        cells = []
-        for label in labels:
-            planner, checker = label.split("@")
-            runs = g.get((scene, planner, checker), [])
-            if not runs:
-                cells.append("-")
-                continue
-            solved = sum(r["solved"] == "1" for r in runs)
-            times = sorted((float(r["time_s"]), r["solved"] == "1") for r in runs if r["time_s"])
-            median = statistics.median(t for t, _ in times)
-            bound = ">" if sum(not s for _, s in times) * 2 >= len(times) else ""
-            failed = sum(r["path_check"] == "fail" for r in runs)
-            cells.append("%s%.3g s, %d/%d%s" % (bound, median, solved, len(runs),
-                                                 ", **%d failed re-check**" % failed if failed else ""))
-        print("| %s | %s |" % (scene, " | ".join(cells)))
-
-
 def group_median(runs):
     """(median time, whether it is a lower bound, solved, runs, median share in checks)."""
     times = sorted((float(r["time_s"]), r["solved"] == "1") for r in runs if r["time_s"])
@@ -133,6 +104,32 @@ def ratio(reference, ours):
     if reference[1] and ours[1]:
         return "-"  # both lower bounds: unknown
     return "%s%.3gx" % (">" if reference[1] else "<" if ours[1] else "", reference[0] / ours[0])
+
+
+def regression(directory):
+    rows = read(directory + "/results.csv")
+    g = groups(rows)
+    scenes, labels = [], []
+    for scene, planner, checker in g:
+        if scene not in scenes:
+            scenes.append(scene)
+        if planner + "@" + checker not in labels:
+            labels.append(planner + "@" + checker)
+    print("| scene | " + " | ".join(labels) + " |")
+    print("|" + " --- |" * (len(labels) + 1))
+    for scene in scenes:
+        cells = []
+        for label in labels:
+            planner, checker = label.split("@")
+            runs = g.get((scene, planner, checker), [])
+            if not runs:
+                cells.append("-")
+                continue
+            median, bound, solved, count, _ = group_median(runs)
+            failed = sum(r["path_check"] == "fail" for r in runs)
+            cells.append("%s%.3g s, %d/%d%s" % (">" if bound else "", median, solved, count,
+                                                 ", **%d failed re-check**" % failed if failed else ""))
+        print("| %s | %s |" % (scene, " | ".join(cells)))
 
 
 def plugin(directory):

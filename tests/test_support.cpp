@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <iterator>
 #include <random>
 
@@ -49,6 +50,14 @@ ScratchFolder::~ScratchFolder() {
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+std::vector<std::string> split_fields(const std::string& line, char separator) {
+  std::vector<std::string> fields;
+  std::istringstream cells(line);
+  for (std::string cell; std::getline(cells, cell, separator);) fields.push_back(cell);
+  if (!line.empty() && line.back() == separator) fields.push_back("");
+  return fields;
 }
 
 std::string ScratchFolder::write(const std::string& name, const std::string& text) const {

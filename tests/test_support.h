@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace gplanner::testing {
 
@@ -36,6 +37,10 @@ struct CommandResult {
 
 // The whole content of the file at `path` (empty when it cannot be read).
 std::string read_file(const std::string& path);
+
+// The fields of one line of text split at `separator` (no quoting; a line that ends in
+// the separator ends with an empty field).
+std::vector<std::string> split_fields(const std::string& line, char separator = ',');
 
 // `text` in single quotes, for run_gplan's shell syntax (text without quotes of its own).
 inline std::string shell_quoted(const std::string& text) { return "'" + text + "'"; }

@@ -21,15 +21,9 @@ using gplanner::testing::read_file;
 using gplanner::testing::run_gplan;
 using gplanner::testing::ScratchFolder;
 using gplanner::testing::shell_quoted;
+using gplanner::testing::split_fields;
 
 std::string ci_config() { return project_root() + "/config/bench/broad_phase_ci.yaml"; }
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream in(line);
-  for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
-  return fields;
-}
 
 TEST(GplanBenchBroadPhase, CiConfigurationWritesCsvTablesAndPlots) {
   const ScratchFolder folder;
@@ -51,7 +45,7 @@ TEST(GplanBenchBroadPhase, CiConfigurationWritesCsvTablesAndPlots) {
   int rows = 0, gpu_rows_run = 0;
   while (std::getline(csv, line)) {
     SCOPED_TRACE(line);
-    const std::vector<std::string> f = split(line);
+    const std::vector<std::string> f = split_fields(line);
     ASSERT_GE(f.size(), 12u);
     ++rows;
     const bool gpu = f[1].rfind("gpu-", 0) == 0;

@@ -58,9 +58,7 @@ TEST(OmplBenchmark, LogReadByOmplBenchmarkStatisticsIntoSqlite) {
   std::map<std::string, std::vector<std::string>> rows;
   std::istringstream lines(query.text);
   for (std::string line; std::getline(lines, line);) {
-    std::vector<std::string> fields;
-    std::istringstream cells(line);
-    for (std::string cell; std::getline(cells, cell, '|');) fields.push_back(cell);
+    const std::vector<std::string> fields = testing::split_fields(line, '|');
     ASSERT_EQ(fields.size(), 6u) << line;
     rows[fields[0]] = fields;
   }

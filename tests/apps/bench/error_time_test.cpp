@@ -49,10 +49,7 @@ std::vector<Row> read_rows(const std::string& file) {
   std::vector<std::string> header;
   std::vector<Row> rows;
   for (std::string line; std::getline(text, line);) {
-    std::vector<std::string> fields;
-    std::istringstream cells(line);
-    for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
-    if (!line.empty() && line.back() == ',') fields.push_back("");
+    const std::vector<std::string> fields = gplanner::testing::split_fields(line);
     if (header.empty()) {
       header = fields;
       continue;

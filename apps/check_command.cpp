@@ -8,10 +8,12 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
 
+#include "check_report.h"
 #include "command_line.h"
 #include "gplanner/common/parallel_for.h"
 #include "gplanner/common/physical_memory.h"
@@ -26,6 +28,7 @@
 #include "gplanner/planner/scene/scene.h"
 #include "gplanner/planner/scene/scene_collision_model.h"
 #include "interruption.h"
+#include "json_line.h"
 
 namespace gplan {
 namespace {
@@ -89,24 +92,12 @@ double check_timed(gplanner::CollisionChecker* checker, const std::vector<float>
   return seconds_since(start);
 }
 
-std::string gpu_details(gplanner::CollisionChecker* checker) {
+// The GPU's figures of a checker's last call, where it is a GPU checker.
+std::optional<GpuCallReport> gpu_call(gplanner::CollisionChecker* checker) {
   auto* gpu = dynamic_cast<gplanner::GpuChecker*>(checker);
-  if (gpu == nullptr) return "";
-  const gplanner::GpuCheckStats& stats = gpu->last_stats();
-  std::ostringstream out;
-  out << gpu->device_name() << ", " << gplanner::traversal_name(gpu->traversal()) << " traversal, "
-      << std::setprecision(3) << stats.milliseconds << " ms on the GPU in " << stats.chunks
-      << " chunk(s), " << stats.bv_tests << " BV tests, " << stats.triangle_tests
-      << " triangle tests";
-  if (stats.jobs) out << ", " << stats.jobs << " body pairs past the broad phase";
-  if (stats.rounds) out << ", " << stats.rounds << " rounds";
-  if (stats.warp_per_pair) out << ", one kernel (small batch)";
-  if (!stats.round_tasks.empty()) {
-    out << "; tasks per round:";
-    for (const unsigned tasks : stats.round_tasks) out << " " << tasks;
-  }
-  if (stats.finished_tasks) out << "; then " << stats.finished_tasks << " tasks a warp each";
-  return out.str();
+  if (gpu == nullptr) return std::nullopt;
+  return GpuCallReport{gpu->device_name(), gplanner::traversal_name(gpu->traversal()),
+                       gpu->last_stats()};
 }
 
 }  // namespace
@@ -209,70 +200,44 @@ int run_check(int argc, char** argv) {
   std::vector<double> sorted_s = run_s;
   std::sort(sorted_s.begin(), sorted_s.end());
   const double check_s = sorted_s[sorted_s.size() / 2];
-  std::size_t collisions = 0;
-  for (const std::uint8_t v : verdicts) collisions += v;
-  const double fraction = n ? static_cast<double>(collisions) / n : 0.0;
-  const double rate = check_s > 0 ? n / check_s : 0.0;
-
-  std::cout << "scene       " << gplanner::terminal_text(scene_file) << " ("
-            << gplanner::terminal_text(scene.name) << "), loaded in " << std::fixed
-            << std::setprecision(3) << load_s << " s\n"
-            << "robot       " << gplanner::terminal_text(scene.robot.name) << ": "
-            << scene.robot.links.size() << " link" << (scene.robot.links.size() == 1 ? "" : "s")
-            << ", " << scene.robot.triangle_count() << " triangles, " << pairs.size()
-            << " checked link pairs; " << gplanner::base_type_name(space.base) << " base, "
-            << space.dof() << " DOF (" << width << " floats)\n"
-            << "obstacles   " << scene.obstacles.size() << " (" << scene.obstacle_triangle_count()
-            << " triangles; " << scene.dropped_obstacle_triangles
-            << " out of the robot's reach dropped)\n"
-            << "tolerance   delta = " << std::scientific << std::setprecision(2) << delta
-            << std::fixed << " m\n"
-            << "backend     " << checker->backend() << "\n"
-            << "start, goal free; straight line start -> goal ";
-  if (line_collision >= 0) {
-    std::cout << "collides (first at " << std::setprecision(1) << 100 * line_collision
-              << "% of the way)\n";
-  } else {
-    std::cout << "is free\n";
-  }
-  std::cout << "checked     " << n << " configurations (seed " << seed << ")\n"
-            << "collisions  " << collisions << " (" << std::setprecision(2) << 100 * fraction
-            << "%)\n"
-            << "time        " << std::setprecision(4) << check_s << " s"
-            << (repeat > 1 ? " (median of " + std::to_string(repeat) + " runs)" : "") << ", "
-            << std::setprecision(0) << rate << " queries/s\n";
-  const std::string details = gpu_details(checker.get());
-  if (!details.empty()) std::cout << "gpu         " << details << "\n";
+  CheckReport report;
+  report.scene_file = scene_file;
+  report.scene_name = scene.name;
+  report.robot_name = scene.robot.name;
+  report.links = scene.robot.links.size();
+  report.robot_triangles = scene.robot.triangle_count();
+  report.checked_pairs = pairs.size();
+  report.base = gplanner::base_type_name(space.base);
+  report.dof = space.dof();
+  report.width = width;
+  report.obstacles = scene.obstacles.size();
+  report.obstacle_triangles = scene.obstacle_triangle_count();
+  report.dropped_obstacle_triangles = scene.dropped_obstacle_triangles;
+  report.load_s = load_s;
+  report.delta = delta;
+  report.backend = checker->backend();
+  report.straight_line_collision = line_collision;
+  report.n = n;
+  report.seed = seed;
+  for (const std::uint8_t v : verdicts) report.collisions += v;
+  report.seconds = check_s;
+  report.repeat = repeat;
+  report.gpu = gpu_call(checker.get());
 
   // --compare: the same configurations through a second backend, every disagreement
   // judged by FCL's verdict and distance against the band.
-  gplanner::CheckerComparison comparison;
-  std::string compared_backend;
-  double compare_s = 0;
   if (!compare.empty()) {
     std::unique_ptr<gplanner::CollisionChecker> other =
         make_checker(scene, "compare", compare, options);
-    compared_backend = other->backend();
+    CheckReport::Compare& c = report.compare.emplace();
+    c.backend = other->backend();
     std::vector<std::uint8_t> other_verdicts(n);
-    compare_s = check_timed(other.get(), q, n, width, &other_verdicts);
+    c.seconds = check_timed(other.get(), q, n, width, &other_verdicts);
     if (interrupted()) return report_interruption({}, unwritten);
     gplanner::FclChecker judge(scene, options.threads);
-    comparison = gplanner::compare_verdicts(q.data(), n, width, verdicts.data(),
-                                            other_verdicts.data(), &judge, delta);
-    std::cout << "compare     " << checker->backend() << " vs " << compared_backend << " ("
-              << std::setprecision(4) << compare_s << " s, " << std::setprecision(1)
-              << (check_s > 0 ? compare_s / check_s : 0.0)
-              << "x the time): " << comparison.disagreements
-              << " disagreements: " << comparison.missed_collisions << " missed collisions, "
-              << comparison.extra_within_band << " extra within the band, "
-              << comparison.extra_outside_band << " outside it";
-    if (comparison.extra_within_band + comparison.extra_outside_band > 0) {
-      std::cout << " (largest FCL distance " << std::scientific << std::setprecision(2)
-                << comparison.largest_extra_distance << std::fixed << " m)";
-    }
-    std::cout << "\n";
-    const std::string other_details = gpu_details(other.get());
-    if (!other_details.empty()) std::cout << "gpu         " << other_details << "\n";
+    c.comparison = gplanner::compare_verdicts(q.data(), n, width, verdicts.data(),
+                                              other_verdicts.data(), &judge, delta);
+    c.gpu = gpu_call(other.get());
   }
 
   if (!out.empty()) {
@@ -310,43 +275,12 @@ int run_check(int argc, char** argv) {
         stream << '\n';
       }
     });
-    std::cout << "wrote       " << gplanner::terminal_text(out) << "\n";
+    report.written = out;
   }
-  if (args.flag("json")) {
-    std::cout << std::setprecision(6) << "{\"scene\":" << gplanner::json_string(scene_file)
-              << ",\"name\":" << gplanner::json_string(scene.name)
-              << ",\"backend\":" << gplanner::json_string(checker->backend()) << ",\"n\":" << n
-              << ",\"seed\":" << seed << ",\"dof\":" << space.dof() << ",\"width\":" << width
-              << ",\"links\":" << scene.robot.links.size()
-              << ",\"robot_triangles\":" << scene.robot.triangle_count()
-              << ",\"checked_pairs\":" << pairs.size()
-              << ",\"obstacle_triangles\":" << scene.obstacle_triangle_count()
-              << ",\"dropped_obstacle_triangles\":" << scene.dropped_obstacle_triangles
-              << ",\"delta\":" << std::scientific << delta << std::fixed
-              << ",\"collisions\":" << collisions << ",\"collision_fraction\":" << fraction
-              << ",\"seconds\":" << check_s << ",\"repeat\":" << repeat
-              << ",\"queries_per_second\":" << rate
-              << ",\"straight_line_collides\":" << (line_collision >= 0 ? "true" : "false");
-    if (auto* gpu = dynamic_cast<gplanner::GpuChecker*>(checker.get())) {
-      std::cout << ",\"traversal\":"
-                << gplanner::json_string(gplanner::traversal_name(gpu->traversal()))
-                << ",\"gpu_ms\":" << gpu->last_stats().milliseconds
-                << ",\"bv_tests\":" << gpu->last_stats().bv_tests
-                << ",\"triangle_tests\":" << gpu->last_stats().triangle_tests
-                << ",\"rounds\":" << gpu->last_stats().rounds
-                << ",\"small_batch\":" << (gpu->last_stats().warp_per_pair ? "true" : "false");
-    }
-    if (!compare.empty()) {
-      std::cout << ",\"compare\":{\"backend\":" << gplanner::json_string(compared_backend)
-                << ",\"seconds\":" << compare_s << ",\"disagreements\":" << comparison.disagreements
-                << ",\"missed_collisions\":" << comparison.missed_collisions
-                << ",\"extra_within_band\":" << comparison.extra_within_band
-                << ",\"extra_outside_band\":" << comparison.extra_outside_band << "}";
-    }
-    std::cout << "}\n";
-  }
+  std::cout << report.text();
+  if (args.flag("json")) std::cout << json_line(report.json());
   // A comparison that finds the band broken fails the run, so scripts notice.
-  if (comparison.missed_collisions + comparison.extra_outside_band > 0) {
+  if (report.band_broken()) {
     std::cerr << "gplan: the checkers disagree outside the tolerance band\n";
     return 3;
   }

@@ -1,9 +1,14 @@
 #include "gplan_commands.h"
 
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
+#include <vector>
 #include <string>
 
-#include "bench_command.h"
 #include "check_command.h"
 #include "command_line.h"
 #include "gplanner/common/gpu_device.h"
@@ -42,19 +47,9 @@ const char* const kUsage =
     "      free along every motion (docs/design.md, \"Certified motions\"); --path-check\n"
     "      fine re-checks it at samples instead; --edges certified certifies every edge\n"
     "      the planner uses, not only the path's\n"
-    "  gplan bench CONFIG [-o DIR] [--jobs N] [--baseline FILE] [--save-baseline FILE]\n"
-    "                    [--report DIR] [--no-plots]\n"
-    "      regression runs and the seed's tables as a configuration (config/bench/*.yaml)\n"
-    "      says: every run in a worker process with its own seed, progress on stderr;\n"
-    "      writes DIR (default gplan-bench-NAME-DATE-TIME; a new or empty folder):\n"
-    "      results.csv, summary.txt (also printed), ompl/SCENE.log (OMPL's benchmark log,\n"
-    "      for ompl_benchmark_statistics), plots/ (PNG and SVG, with matplotlib);\n"
-    "      --jobs: OMPL's planners on one thread (@fcl, @gpu) run N at a time, one on\n"
-    "      the GPU; a path failing the re-check is kept in DIR/failed_paths/;\n"
-    "      --save-baseline keeps the groups' figures, --baseline compares with them\n"
-    "      (exit 5 on a regression beyond the configuration's tolerances); exit 3 when a\n"
-    "      returned path fails the fine FCL re-check; --report DIR summarises an earlier\n"
-    "      run's folder again (and draws its plots) instead of running\n"
+    "  gplan bench CONFIG ...\n"
+    "      deprecated alias of gplan-bench CONFIG ... (the benchmark program installed\n"
+    "      beside gplan; gplan-bench --help), to be removed in 0.3\n"
     "  gplan info\n"
     "      gplanner's version, how it was built and which GPU it can use\n"
     "Output files (--out, --picture, --save-roadmap) are checked before any work: a\n"
@@ -84,6 +79,26 @@ int run_info() {
   return 0;
 }
 
+// `gplan bench ARGS`: runs gplan-bench ARGS from the folder gplan lies in, in gplan's
+// place (its exit code is gplan's).
+int run_bench_alias(int argc, char** argv) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  fs::path self = fs::read_symlink("/proc/self/exe", error);
+  // Started by a dynamic loader (ld.so PROGRAM): the program is argv[0].
+  if (error || self.filename().string().rfind("gplan", 0) != 0) self = argv[0];
+  const fs::path bench = self.parent_path() / "gplan-bench";
+  std::vector<char*> args{const_cast<char*>("gplan-bench")};
+  for (int i = 2; i < argc; ++i) args.push_back(argv[i]);
+  args.push_back(nullptr);
+  std::cout.flush();
+  std::cerr.flush();
+  ::execv(bench.c_str(), args.data());
+  throw std::runtime_error("gplan bench runs gplan-bench, which did not start from " +
+                           bench.string() + " (" + std::strerror(errno) +
+                           "); run gplan-bench from where it is installed");
+}
+
 }  // namespace
 
 int run_command(int argc, char** argv) {
@@ -94,7 +109,7 @@ int run_command(int argc, char** argv) {
   const std::string command = argv[1];
   if (command == "check") return run_check(argc, argv);
   if (command == "plan") return run_plan(argc, argv);
-  if (command == "bench") return run_bench(argc, argv);
+  if (command == "bench") return run_bench_alias(argc, argv);
   if (command == "info") return run_info();
   throw UsageError("unknown command '" + excerpt(command) + "'; use check, plan, bench or info");
 }

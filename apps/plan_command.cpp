@@ -25,6 +25,8 @@
 #include "gplanner/planner/scene/input_file.h"
 #include "gplanner/planner/scene/scene.h"
 #include "interruption.h"
+#include "json_line.h"
+#include "plan_report.h"
 
 namespace gplan {
 namespace {
@@ -176,62 +178,24 @@ int run_plan(int argc, char** argv) {
   }
   if (interrupted()) return report_interruption(written, unwritten);
 
-  const gplanner::PlanTimes& t = result.times;
-  const int width = scene.space.width();
-  const std::size_t waypoints = result.path.size() / width;
-  std::cout << std::fixed << "scene       " << gplanner::terminal_text(scene_file) << " ("
-            << gplanner::terminal_text(scene.name) << "), " << scene.space.dof() << " DOF\n"
-            << "planner     " << gplanner::strategy_name(strategy) << ", seed " << options.seed
-            << ", " << checker->backend() << " backend, k-NN on the " << neighbors->device() << "\n"
-            << "edges       " << gplanner::edge_checks_name(options.edges) << ", path "
-            << (options.certify_path || options.edges == gplanner::EdgeChecks::kCertified
-                    ? "certified free along every motion"
-                    : "re-checked at 1/" + std::to_string(options.final_check_refinement) +
-                          " of the edge resolution")
-            << "\n"
-            << "roadmap     " << result.milestones << " milestones, " << result.edges << " edges ("
-            << result.edges_checked << " checked, " << result.samples_checked << " edge samples), "
-            << result.states_checked << " states checked, " << result.rounds << " round(s)\n";
-  if (result.solved) {
-    std::cout << "path        " << waypoints << " waypoints, length " << std::setprecision(3)
-              << result.length << " (" << result.length_before_shortcut
-              << " before shortcutting)\n";
-  } else {
-    std::cout << "path        none found (" << result.stop_reason << ")\n";
-  }
-  std::cout << std::setprecision(4) << "time        " << t.total << " s: sampling " << t.sampling
-            << ", state checks " << t.state_checks << ", k-NN " << t.knn << ", search " << t.search
-            << ", edge checks " << t.edge_checks << ", shortcutting " << t.shortcutting << "\n";
-  for (const std::string& file : written)
-    std::cout << "wrote       " << gplanner::terminal_text(file) << "\n";
-  if (args.flag("json")) {
-    std::cout << std::setprecision(6) << "{\"scene\":" << gplanner::json_string(scene_file)
-              << ",\"name\":" << gplanner::json_string(scene.name)
-              << ",\"planner\":" << gplanner::json_string(gplanner::strategy_name(strategy))
-              << ",\"backend\":" << gplanner::json_string(checker->backend())
-              << ",\"knn\":" << gplanner::json_string(neighbors->device())
-              << ",\"edges\":" << gplanner::json_string(gplanner::edge_checks_name(options.edges))
-              << ",\"path_check\":"
-              << gplanner::json_string(options.certify_path ||
-                                               options.edges == gplanner::EdgeChecks::kCertified
-                                           ? "certified"
-                                           : "fine")
-              << ",\"seed\":" << options.seed
-              << ",\"solved\":" << (result.solved ? "true" : "false")
-              << ",\"stop_reason\":" << gplanner::json_string(result.stop_reason)
-              << ",\"length\":" << result.length
-              << ",\"length_before_shortcut\":" << result.length_before_shortcut
-              << ",\"waypoints\":" << waypoints << ",\"milestones\":" << result.milestones
-              << ",\"edges\":" << result.edges << ",\"edges_checked\":" << result.edges_checked
-              << ",\"states_checked\":" << result.states_checked
-              << ",\"samples_checked\":" << result.samples_checked
-              << ",\"searches\":" << result.searches << ",\"edge_batches\":" << result.edge_batches
-              << ",\"rounds\":" << result.rounds << ",\"seconds\":" << t.total
-              << ",\"setup_seconds\":" << setup_s << ",\"times\":{\"sampling\":" << t.sampling
-              << ",\"state_checks\":" << t.state_checks << ",\"knn\":" << t.knn
-              << ",\"search\":" << t.search << ",\"edge_checks\":" << t.edge_checks
-              << ",\"shortcutting\":" << t.shortcutting << "}}\n";
-  }
+  PlanReport report;
+  report.scene_file = scene_file;
+  report.scene_name = scene.name;
+  report.dof = scene.space.dof();
+  report.width = scene.space.width();
+  report.planner = gplanner::strategy_name(strategy);
+  report.backend = checker->backend();
+  report.knn = neighbors->device();
+  report.edges = gplanner::edge_checks_name(options.edges);
+  report.certified_path =
+      options.certify_path || options.edges == gplanner::EdgeChecks::kCertified;
+  report.final_check_refinement = options.final_check_refinement;
+  report.seed = options.seed;
+  report.result = result;
+  report.setup_s = setup_s;
+  report.written = written;
+  std::cout << report.text();
+  if (args.flag("json")) std::cout << json_line(report.json());
   if (!result.solved && result.stop_reason == "memory limit") {
     std::cerr << "gplan: no path found in " << result.milestones << " milestones, and a "
               << "larger roadmap would need more than half of this machine's memory; try "

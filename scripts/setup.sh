@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(g++ cmake make libeigen3-dev libyaml-cpp-dev liburdfdom-dev libtinyxml2-dev
-          libassimp-dev libfcl-dev libccd-dev libgtest-dev libompl-dev ompl-demos
+          libassimp-dev libfcl-dev libccd-dev libgtest-dev libompl-dev ompl-demos nlohmann-json3-dev
           python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do

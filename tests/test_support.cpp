@@ -70,9 +70,13 @@ std::string ScratchFolder::write(const std::string& name, const std::string& tex
 CommandResult run_gplan(const std::string& arguments) {
   // $GPLANNER_GPLAN: how to start gplan where the build's path does not hold it (the
   // GPU machine: ".gpu/run .gpu/bin/gplan").
-  const char* custom = std::getenv("GPLANNER_GPLAN");
-  const std::string program =
-      custom && *custom ? std::string(custom) : "'" + std::string(GPLAN_EXECUTABLE) + "'";
+  return run_program("GPLANNER_GPLAN", GPLAN_EXECUTABLE, arguments);
+}
+
+CommandResult run_program(const char* variable, const std::string& executable,
+                          const std::string& arguments) {
+  const char* custom = std::getenv(variable);
+  const std::string program = custom && *custom ? std::string(custom) : "'" + executable + "'";
   const std::string command = program + " " + arguments + " 2>&1";
   CommandResult result;
   FILE* pipe = popen(command.c_str(), "r");

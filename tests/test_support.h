@@ -49,6 +49,11 @@ inline std::string shell_quoted(const std::string& text) { return "'" + text + "
 // $GPLANNER_GPLAN is set, that command line instead (e.g. ".gpu/run .gpu/bin/gplan").
 CommandResult run_gplan(const std::string& arguments);
 
+// Runs `executable` with `arguments` (shell syntax), standard output and error together;
+// where the environment variable `variable` is set, that command line instead.
+CommandResult run_program(const char* variable, const std::string& executable,
+                          const std::string& arguments);
+
 // Runs `body` in a child process whose address space is held to what it maps now plus
 // `spare` bytes, so that threads fail to start there (each needs a stack of megabytes):
 // returns 0 when body returned true, 1 when false, 2 when it threw, and 128 + the signal

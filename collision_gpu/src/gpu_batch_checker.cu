@@ -64,7 +64,7 @@ struct GpuBatchChecker::Impl {
   cuda::PinnedBuffer<std::uint8_t> pinned_verdicts;
   cuda::PinnedBuffer<traversals::DeviceTestCounts> pinned_counts;
   cuda::PinnedBuffer<traversals::BalancedState> pinned_state;
-  cudaEvent_t start_event = nullptr, stop_event = nullptr;
+  std::optional<cuda::Event> start_event, stop_event;  // made with the model's upload
 
   Impl(const CollisionModel& model, const GpuCheckerOptions& o) : options(o), host(model) {
     int count = 0;
@@ -109,13 +109,8 @@ struct GpuBatchChecker::Impl {
     pinned_verdicts.reserve(kPinnedQueries);
     pinned_counts.reserve(1);
     pinned_state.reserve(1);
-    check_cuda(cudaEventCreate(&start_event), "event");
-    check_cuda(cudaEventCreate(&stop_event), "event");
-  }
-
-  ~Impl() {
-    if (start_event) cudaEventDestroy(start_event);
-    if (stop_event) cudaEventDestroy(stop_event);
+    start_event.emplace();
+    stop_event.emplace();
   }
 
   // Whether a batch of n goes the one-wait way: one kernel launch sequence, no rounds.
@@ -138,7 +133,7 @@ struct GpuBatchChecker::Impl {
     configurations.reserve(std::max(n, kPinnedQueries) * width);
     verdicts.reserve(std::max(n, kPinnedQueries));
     if (options.traversal == Traversal::kBalanced) balanced->reserve(kPinnedQueries, memory_cap);
-    check_cuda(cudaEventRecord(start_event), "event");
+    check_cuda(cudaEventRecord(start_event->get()), "event");
     check_cuda(cudaMemcpyAsync(configurations.get(), pinned_configurations.get(),
                                n * width * sizeof(float), cudaMemcpyHostToDevice),
                "upload configurations");
@@ -163,14 +158,14 @@ struct GpuBatchChecker::Impl {
     check_cuda(cudaMemcpyAsync(pinned_counts.get(), counts.get(),
                                sizeof(traversals::DeviceTestCounts), cudaMemcpyDeviceToHost),
                "read counters");
-    check_cuda(cudaEventRecord(stop_event), "event");
-    check_cuda(cudaEventSynchronize(stop_event), "wait for the small batch");
+    check_cuda(cudaEventRecord(stop_event->get()), "event");
+    check_cuda(cudaEventSynchronize(stop_event->get()), "wait for the small batch");
     if (options.traversal == Traversal::kBalanced &&
         !balanced->finish_small(*pinned_state.get(), &stats))
       return false;
     std::copy(pinned_verdicts.get(), pinned_verdicts.get() + n, h_verdicts);
     float ms = 0;
-    check_cuda(cudaEventElapsedTime(&ms, start_event, stop_event), "event");
+    check_cuda(cudaEventElapsedTime(&ms, start_event->get(), stop_event->get()), "event");
     stats.milliseconds = ms;
     stats.chunks = 1;
     stats.bv_tests = pinned_counts.get()->bv_tests;
@@ -207,7 +202,7 @@ struct GpuBatchChecker::Impl {
     verdicts.reserve(chunk);
     check_cuda(cudaMemset(counts.get(), 0, sizeof(traversals::DeviceTestCounts)), "memset");
 
-    cudaEvent_t start = start_event, stop = stop_event;
+    cudaEvent_t start = start_event->get(), stop = stop_event->get();
     check_cuda(cudaEventRecord(start), "event");
     std::size_t done = 0;
     while (done < n) {

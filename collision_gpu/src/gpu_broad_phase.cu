@@ -9,6 +9,7 @@
 #include <cstring>
 #include <cub/device/device_radix_sort.cuh>
 #include <stdexcept>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -79,7 +80,8 @@ bool gpu_broad_phase_available(std::string* reason) {
 struct GpuBroadPhase::Impl {
   std::string device_name;
   GpuBroadPhaseStats stats;
-  cudaStream_t stream = nullptr;
+  std::optional<cuda::Stream> owned_stream;  // made once a device is known to be there
+  cudaStream_t stream = nullptr;              // owned_stream's
 
   // One frame's transfers, one upload and one download, through one buffer laid out as
   // IoLayout says (the same on the host, page-locked, and on the device).
@@ -118,11 +120,7 @@ struct GpuBroadPhase::Impl {
                                "); use all_pairs_cpu() or sort_sweep_cpu()");
     }
     device_name = device.name;
-    check_cuda(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking), "stream");
-  }
-
-  ~Impl() {
-    if (stream) cudaStreamDestroy(stream);
+    stream = owned_stream.emplace().get();
   }
 
   void launched(const char* what) {

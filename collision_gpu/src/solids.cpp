@@ -1,5 +1,7 @@
 #include "gplanner/collision_gpu/solids.h"
 
+#include "gplanner/collision_gpu/detail/containment.h"
+
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -149,6 +151,14 @@ BodySolids FlatSolids::add_body(const std::vector<BodyComponent>& body) {
 
 SolidsView FlatSolids::view() const {
   return {components.data(), tree.data(), nodes.data(), triangles.data()};
+}
+
+bool either_body_inside(const SolidsView& view, const BodySolids& a, const BodySolids& b,
+                        const double R_AB[3][3], const double p_AB[3], double margin) {
+  geometry::Transform<double> X_AB;
+  for (int i = 0; i < 3; ++i) X_AB.R.r[i] = {R_AB[i][0], R_AB[i][1], R_AB[i][2]};
+  X_AB.t = {p_AB[0], p_AB[1], p_AB[2]};
+  return detail::either_inside(view, a, b, X_AB, margin);
 }
 
 }  // namespace gplanner

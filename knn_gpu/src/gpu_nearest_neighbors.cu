@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cub/device/device_radix_sort.cuh>
 #include <stdexcept>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,9 @@ bool gpu_nearest_neighbors_available(std::string* reason) {
 struct GpuNearestNeighbors::Impl {
   std::string device_name;
   GpuKnnStats stats;
+  // Owned, made once a device is known to be there; the handles below are theirs.
+  std::optional<cuda::Stream> owned_stream;
+  std::optional<cuda::Event> owned_events[4];
   cudaStream_t stream = nullptr;
   cudaEvent_t start = nullptr, search_start = nullptr, search_stop = nullptr, stop = nullptr;
 
@@ -75,18 +79,13 @@ struct GpuNearestNeighbors::Impl {
                                "); use all_nearest_neighbors_cpu()");
     }
     device_name = device.name;
-    check_cuda(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking), "stream");
+    stream = owned_stream.emplace().get();
+    int e = 0;
     for (cudaEvent_t* event : {&start, &search_start, &search_stop, &stop})
-      check_cuda(cudaEventCreate(event), "event");
+      *event = owned_events[e++].emplace().get();
     counters.reserve(3);
     h_counters.reserve(3);
     axes.reserve(1);
-  }
-
-  ~Impl() {
-    for (cudaEvent_t event : {start, search_start, search_stop, stop})
-      if (event) cudaEventDestroy(event);
-    if (stream) cudaStreamDestroy(stream);
   }
 
   template <int K>

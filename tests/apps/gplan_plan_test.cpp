@@ -92,7 +92,7 @@ GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(GplanPlansOnGpu);
 // planner's resolution, for every seed, with sampled or certified edges.
 void expect_certified_paths_through_the_window(const std::string& backend) {
   ScratchFolder scratch;
-  const std::string folder = testing::project_root() + "/config/bench/error_time_ci/";
+  const std::string folder = testing::project_root() + "/benchmarks/config/error_time_ci/";
   std::ifstream in(folder + "thin_wall.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   text += "  edge_resolution: 0.3\n";

@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "fcl_geometry.h"
-#include "gplanner/collision_gpu/detail/containment.h"
+#include "gplanner/collision_gpu/solids.h"
 #include "gplanner/common/parallel_for.h"
 #include "gplanner/common/scratch_pool.h"
 #include "gplanner/planner/scene/forward_kinematics.h"
@@ -19,13 +19,16 @@ namespace {
 using internal::fcl_primitive;
 using internal::FclBvh;
 
-geometry::Transform<double> to_transform(const Eigen::Isometry3d& X) {
-  geometry::Transform<double> out;
-  for (int i = 0; i < 3; ++i) {
-    out.R.r[i] = {X.linear()(i, 0), X.linear()(i, 1), X.linear()(i, 2)};
-  }
-  out.t = {X.translation().x(), X.translation().y(), X.translation().z()};
-  return out;
+// Whether a component of one body lies inside a solid of the other, b posed in a's
+// frame by X_AB: the collision core's rule (collision_gpu/solids.h).
+bool either_inside(const SolidsView& view, const BodySolids& a, const BodySolids& b,
+                   const Eigen::Isometry3d& X_AB, double margin) {
+  double R[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R[i][j] = X_AB.linear()(i, j);
+  const Eigen::Vector3d p = X_AB.translation();
+  const double t[3] = {p.x(), p.y(), p.z()};
+  return either_body_inside(view, a, b, R, t, margin);
 }
 
 // What one call needs to answer queries on one thread: its own collision objects (FCL
@@ -213,13 +216,12 @@ struct FclChecker::Impl {
     if (!containment) return false;
     const SolidsView view = solids.view();
     for (int l : links_with_geometry) {
-      if (detail::either_inside(view, environment_solids, link_solids[l], to_transform(w.X_WL[l]),
-                                margin))
+      if (either_inside(view, environment_solids, link_solids[l], w.X_WL[l], margin))
         return true;
     }
     for (const auto& [a, b] : checked_pairs) {
-      if (detail::either_inside(view, link_solids[a], link_solids[b],
-                                to_transform(w.X_WL[a].inverse() * w.X_WL[b]), margin))
+      if (either_inside(view, link_solids[a], link_solids[b], w.X_WL[a].inverse() * w.X_WL[b],
+                        margin))
         return true;
     }
     return false;

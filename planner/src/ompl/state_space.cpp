@@ -14,10 +14,6 @@ namespace {
 
 namespace ob = ompl::base;
 
-double weight(const Scene& scene, const char* key) {
-  return scene.planner.number(std::string("distance_weights.") + key);
-}
-
 bool has_joints(const Scene& scene) { return !scene.space.planned_joints.empty(); }
 
 // The base subspace's state inside `state` (which may be the base itself).
@@ -41,8 +37,8 @@ ob::StateSpacePtr make_state_space(const Scene& scene) {
       bounds.setHigh(k, space.base_max[k]);
     }
     se3->setBounds(bounds);
-    se3->setSubspaceWeight(0, weight(scene, "position"));
-    se3->setSubspaceWeight(1, 2 * weight(scene, "rotation"));
+    se3->setSubspaceWeight(0, scene.planner.distance_weights.position);
+    se3->setSubspaceWeight(1, 2 * scene.planner.distance_weights.rotation);
     base = se3;
   } else if (space.base == BaseType::kPlanar) {
     auto se2 = std::make_shared<ob::SE2StateSpace>();
@@ -52,8 +48,8 @@ ob::StateSpacePtr make_state_space(const Scene& scene) {
       bounds.setHigh(k, space.base_max[k]);
     }
     se2->setBounds(bounds);
-    se2->setSubspaceWeight(0, weight(scene, "position"));
-    se2->setSubspaceWeight(1, weight(scene, "rotation"));
+    se2->setSubspaceWeight(0, scene.planner.distance_weights.position);
+    se2->setSubspaceWeight(1, scene.planner.distance_weights.rotation);
     base = se2;
   }
   ob::StateSpacePtr result;
@@ -62,7 +58,7 @@ ob::StateSpacePtr make_state_space(const Scene& scene) {
   } else {
     auto compound = std::make_shared<ob::CompoundStateSpace>();
     if (base) compound->addSubspace(base, 1.0);
-    const double w = weight(scene, "joint");
+    const double w = scene.planner.distance_weights.joint;
     for (std::size_t j = 0; j < space.planned_joints.size(); ++j) {
       const std::string& name = scene.robot.joints[space.planned_joints[j]].name;
       ob::StateSpacePtr joint;
@@ -83,7 +79,7 @@ ob::StateSpacePtr make_state_space(const Scene& scene) {
     // A fixed base and no planned joints: nothing to plan, but a valid (0-D) space.
     result = std::make_shared<ob::RealVectorStateSpace>(0);
   }
-  result->setLongestValidSegmentFraction(scene.planner.number("edge_resolution"));
+  result->setLongestValidSegmentFraction(scene.planner.edge_resolution);
   return result;
 }
 

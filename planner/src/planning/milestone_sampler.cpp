@@ -38,9 +38,9 @@ double per_weight(double sigma, float weight) { return weight > 0 ? sigma / weig
 
 SamplerOptions sampler_options(const PlannerSettings& settings) {
   SamplerOptions options;
-  options.rotation_spread = settings.number("sampler.rotation_spread");
-  options.bridge_fraction = settings.number("sampler.bridge_fraction");
-  options.bridge_sigma = settings.number("sampler.bridge_sigma");
+  options.rotation_spread = settings.sampler.rotation_spread;
+  options.bridge_fraction = settings.sampler.bridge_fraction;
+  options.bridge_sigma = settings.sampler.bridge_sigma;
   return options;
 }
 

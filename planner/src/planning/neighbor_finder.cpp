@@ -105,7 +105,7 @@ class BruteForceNeighborFinder : public NeighborFinder {
 
 // Degrees of freedom beyond which the CPU k-NN is brute force rather than GNAT. Measured
 // on a 2-core machine (a roadmap doubling from 2,000 to 32,000 uniform samples, 16,000
-// for the helicopter and humanoid, k = 15 or 30; bench/history/issue4_planning.md): with 6 (piano,
+// for the helicopter and humanoid, k = 15 or 30; benchmarks/history/issue4_planning.md): with 6 (piano,
 // helicopter) GNAT took a third of brute force's time; with 10
 // (pr2_base_arm), 15 (pr2_reach) and 38 (humanoid) brute force took 0.55, 0.34 and
 // 0.32 of GNAT's.

@@ -32,8 +32,8 @@ std::string path_recheck_problem(const Scene& scene, const std::vector<float>& p
     if (states[i]) return "waypoint " + std::to_string(i) + " collides";
   }
   LocalPlannerOptions fine;
-  fine.resolution_fraction = scene.planner.number("edge_resolution") / refinement;
-  fine.max_displacement = scene.planner.number("max_displacement") / refinement;
+  fine.resolution_fraction = scene.planner.edge_resolution / refinement;
+  fine.max_displacement = scene.planner.max_displacement / refinement;
   LocalPlanner local(scene, &fcl, fine);
   std::vector<std::uint8_t> invalid(m - 1);
   local.check_motions(path.data(), path.data() + width, m - 1, invalid.data());

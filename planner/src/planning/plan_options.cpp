@@ -7,15 +7,15 @@ namespace gplanner {
 PlanOptions plan_options(const Scene& scene) {
   const PlannerSettings& s = scene.planner;
   PlanOptions options;
-  options.seed = static_cast<unsigned long long>(s.number("seed"));
-  options.time_limit_s = s.number("time_limit_s");
-  options.milestones = static_cast<std::size_t>(s.number("roadmap.milestones"));
-  options.neighbors = static_cast<int>(s.number("roadmap.neighbors"));
-  options.lazy_batch_paths = static_cast<int>(s.number("roadmap.lazy_batch_paths"));
-  options.shortcut_rounds = static_cast<int>(s.number("shortcut.rounds"));
-  options.shortcut_candidates = static_cast<int>(s.number("shortcut.candidates"));
-  options.local.resolution_fraction = s.number("edge_resolution");
-  options.local.max_displacement = s.number("max_displacement");
+  options.seed = s.seed;
+  options.time_limit_s = s.time_limit_s;
+  options.milestones = s.roadmap.milestones;
+  options.neighbors = s.roadmap.neighbors;
+  options.lazy_batch_paths = s.roadmap.lazy_batch_paths;
+  options.shortcut_rounds = s.shortcut.rounds;
+  options.shortcut_candidates = s.shortcut.candidates;
+  options.local.resolution_fraction = s.edge_resolution;
+  options.local.max_displacement = s.max_displacement;
   options.sampler = sampler_options(s);
   return options;
 }

@@ -178,11 +178,18 @@ std::uint64_t scene_fingerprint(const Scene& scene) {
     h.add(static_cast<bool>(space.continuous[j]));
   }
   for (const double v : space.fixed_positions) h.add(v);
-  for (const char* key :
-       {"distance_weights.position", "distance_weights.rotation", "distance_weights.joint",
-        "delta_fraction", "edge_resolution", "max_displacement"}) {
-    h.add(std::string(key));
-    h.add(scene.planner.number(key));
+  // The settings a roadmap's milestones and edges depend on, each under its name (the
+  // hash of files written before the settings were typed).
+  const PlannerSettings& s = scene.planner;
+  for (const auto& [name, value] :
+       {std::pair<const char*, double>{"distance_weights.position", s.distance_weights.position},
+        {"distance_weights.rotation", s.distance_weights.rotation},
+        {"distance_weights.joint", s.distance_weights.joint},
+        {"delta_fraction", s.delta_fraction},
+        {"edge_resolution", s.edge_resolution},
+        {"max_displacement", s.max_displacement}}) {
+    h.add(std::string(name));
+    h.add(value);
   }
   return h.value();
 }

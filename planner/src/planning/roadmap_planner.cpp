@@ -35,7 +35,7 @@ class StageTimer {
 // and a stop (should_stop: SIGINT, OMPL's conditions) is honoured within about a
 // slice, while every call stays long against its fixed costs (with slices of at most
 // 40 ms, lazy PRM on 16 cores took up to 1.8x its time at bc00c10 on the cpu backend:
-// bench/RESULTS.md, "The time limit").
+// benchmarks/RESULTS.md, "The time limit").
 double slice_seconds(const PlanOptions& options) {
   if (options.slice_s > 0) return options.slice_s;
   return std::clamp(0.02 * options.time_limit_s, 0.02, 0.25);

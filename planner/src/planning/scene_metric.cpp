@@ -15,9 +15,9 @@ ConfigurationMetric make_metric(const ConfigurationSpace& space, const PlannerSe
                 : space.base == BaseType::kPlanar ? MetricBase::kPlanar
                                                   : MetricBase::kNone;
   metric.joint_count = static_cast<int>(space.planned_joints.size());
-  metric.position_weight = static_cast<float>(settings.number("distance_weights.position"));
-  metric.rotation_weight = static_cast<float>(settings.number("distance_weights.rotation"));
-  metric.joint_weight = static_cast<float>(settings.number("distance_weights.joint"));
+  metric.position_weight = static_cast<float>(settings.distance_weights.position);
+  metric.rotation_weight = static_cast<float>(settings.distance_weights.rotation);
+  metric.joint_weight = static_cast<float>(settings.distance_weights.joint);
   for (int j = 0; j < metric.joint_count; ++j) {
     if (!space.continuous[j]) continue;
     if (j >= kMaxContinuousJointIndex) {

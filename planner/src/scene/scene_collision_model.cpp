@@ -78,7 +78,7 @@ ToleranceBand tolerance_band(const Scene& scene) {
     }
     if (!robot_box.isEmpty()) band.robot_size = robot_box.diagonal().norm();
   }
-  band.delta = scene.planner.number("delta_fraction") * band.scene_size;
+  band.delta = scene.planner.delta_fraction * band.scene_size;
   if (band.robot_size > 0 && kRobotBandFraction * band.robot_size < band.delta) {
     band.delta = kRobotBandFraction * band.robot_size;
     band.capped = true;

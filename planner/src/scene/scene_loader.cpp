@@ -11,7 +11,7 @@
 #include <sstream>
 #include <tuple>
 
-#include "gplanner/planner/planning/local_planner.h"
+#include "gplanner/planner/planning/motion_bound.h"  // the longest motion, for max_displacement
 #include "gplanner/planner/scene/input_file.h"
 #include "gplanner/planner/scene/input_limits.h"
 #include "gplanner/planner/scene/mesh_components.h"
@@ -19,8 +19,9 @@
 #include "gplanner/planner/scene/scene.h"
 #include "gplanner/planner/scene/scene_collision_model.h"
 #include "gplanner/planner/scene/urdf_loader.h"
-#include "yaml_reader.h"
-#include "yaml_structure.h"
+#include "planner_settings_reader.h"
+#include "gplanner/planner/scene/yaml_reader.h"
+#include "gplanner/planner/scene/yaml_structure.h"
 
 namespace gplanner {
 namespace {
@@ -35,47 +36,6 @@ Eigen::Isometry3d read_pose(const YamlReader& in, const YAML::Node& node, const 
     X.linear() = in.quaternion(node["quat_wxyz"], key + ".quat_wxyz").toRotationMatrix();
   }
   return X;
-}
-
-void flatten_settings(const YAML::Node& node, const std::string& prefix, PlannerSettings* out) {
-  for (const auto& entry : node) {
-    const std::string key = YamlReader::join(prefix, entry.first.as<std::string>());
-    if (entry.second.IsMap()) {
-      flatten_settings(entry.second, key, out);
-      continue;
-    }
-    double value = 0;
-    if (YAML::convert<double>::decode(entry.second, value)) {
-      out->numbers[key] = value;
-    } else {
-      out->words[key] = entry.second.Scalar();
-    }
-  }
-}
-
-PlannerSettings read_planner_settings(const YamlReader& in, const YAML::Node& overrides) {
-  PlannerSettings settings;
-  flatten_settings(YAML::Load(default_planner_settings_yaml()), "", &settings);
-  if (!overrides) return settings;
-  std::function<void(const YAML::Node&, const std::string&)> apply = [&](const YAML::Node& node,
-                                                                         const std::string& key) {
-    if (!node.IsMap()) in.fail(node, key, "expected a map of settings");
-    for (const auto& entry : node) {
-      const std::string name = YamlReader::join(key, entry.first.as<std::string>());
-      const std::string setting = name.substr(std::string("planner.").size());
-      if (entry.second.IsMap()) {
-        apply(entry.second, name);
-      } else if (settings.numbers.count(setting)) {
-        settings.numbers[setting] = in.number(entry.second, name);
-      } else if (settings.words.count(setting)) {
-        settings.words[setting] = in.text(entry.second, name);
-      } else {
-        in.fail(entry.first, name, "unknown planner setting; config/planner.yaml lists them");
-      }
-    }
-  };
-  apply(overrides, "planner");
-  return settings;
 }
 
 void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
@@ -574,57 +534,11 @@ Scene load_scene(const std::string& path) {
     scene.start_defined = in.at(start, "start");
     scene.goal_defined = in.at(goal, "goal");
     scene.planner = read_planner_settings(in, root["planner"]);
-    const double delta_fraction = scene.planner.number("delta_fraction");
-    if (!(delta_fraction > 0 && delta_fraction <= 1e-5)) {
-      in.fail(root["planner"]["delta_fraction"], "planner.delta_fraction",
-              "must lie in (0, 1e-5]: the tolerance band may not exceed 1e-5 of the scene's size");
-    }
     refine_primitive_obstacles(&scene);
     check_band_representable(scene, in.at(root["robot"], "robot"), in.at(root["bounds"], "bounds"));
-    // The other numbers: each within its range (counts whole).
-    struct Range {
-      const char* key;
-      double low, high;
-      bool low_open, whole;
-      const char* what;
-    };
-    const Range ranges[] = {
-        {"seed", 0, 9007199254740992.0, false, true,
-         "must be a whole number from 0 to 9007199254740992 (2^53)"},
-        {"time_limit_s", 0, 1e9, true, false, "must be a positive number of seconds"},
-        {"distance_weights.position", 0, 1e9, false, false, "must be 0 or more"},
-        {"distance_weights.rotation", 0, 1e9, false, false, "must be 0 or more"},
-        {"distance_weights.joint", 0, 1e9, false, false, "must be 0 or more"},
-        {"edge_resolution", 1.0 / kMaxEdgeSegments, 1, false, false,
-         "must lie in [1e-5, 1]: an edge across the space takes up to 1 / edge_resolution "
-         "samples, 1e5 at most"},
-        {"max_displacement", 0, 1e9, false, false, "must be 0 (off) or a distance in metres"},
-        {"roadmap.milestones", 1, 1e8, false, true, "must be a whole number from 1 to 1e8"},
-        {"roadmap.neighbors", 1, 64, false, true, "must be a whole number from 1 to 64"},
-        {"roadmap.lazy_batch_paths", 1, 4096, false, true, "must be a whole number from 1 to 4096"},
-        {"shortcut.rounds", 0, 1000, false, true, "must be a whole number from 0 to 1000"},
-        {"shortcut.candidates", 1, 1e6, false, true, "must be a whole number from 1 to 1e6"},
-        {"sampler.rotation_spread", 0, 1e9, false, false,
-         "must be 0 (uniform rotations) or a spread in radians"},
-        {"sampler.bridge_fraction", 0, 1, false, false, "must lie in [0, 1]"},
-        {"sampler.bridge_sigma", 0, 1e9, true, false, "must be a positive distance"},
-    };
-    for (const Range& r : ranges) {
-      const double v = scene.planner.number(r.key);
-      const bool ok =
-          (r.low_open ? v > r.low : v >= r.low) && v <= r.high && (!r.whole || v == std::floor(v));
-      if (!ok) {
-        const std::string key = r.key;
-        const std::size_t dot = key.find('.');
-        const YAML::Node node = dot == std::string::npos
-                                    ? root["planner"][key]
-                                    : root["planner"][key.substr(0, dot)][key.substr(dot + 1)];
-        in.fail(node, "planner." + key, r.what);
-      }
-    }
     // max_displacement: samples per edge by the robot's reach, as many as the longest
     // motion needs at most.
-    const double max_displacement = scene.planner.number("max_displacement");
+    const double max_displacement = scene.planner.max_displacement;
     const double longest = MotionBound(scene.robot, scene.space).longest_displacement();
     if (max_displacement > 0 && longest / max_displacement > kMaxEdgeSegments) {
       std::ostringstream what;

@@ -1,4 +1,4 @@
-#include "yaml_structure.h"
+#include "gplanner/planner/scene/yaml_structure.h"
 
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/eventhandler.h>

@@ -287,7 +287,7 @@ TEST(OmplConventions, TimeLimitKept) {
 TEST(OmplConventions, ResolutionAndMotionCountsAsOmpls) {
   Problem p("pr2_base_arm.yaml");
   EXPECT_DOUBLE_EQ(p.si->getStateValidityCheckingResolution(),
-                   p.scene.planner.number("edge_resolution"));
+                   p.scene.planner.edge_resolution);
   auto planner = p.planner<Prm>(kSmall);
   EXPECT_DOUBLE_EQ(planner->options().local.resolution_fraction,
                    p.si->getStateValidityCheckingResolution());

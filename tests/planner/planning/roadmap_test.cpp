@@ -95,15 +95,15 @@ TEST(Roadmap, RefusedForAnotherSceneOrOtherSettings) {
   EXPECT_NE(load_error(detailed, path).find("belongs to another scene"), std::string::npos)
       << load_error(detailed, path);
   Scene finer = piano;
-  finer.planner.numbers["edge_resolution"] = 0.005;
+  finer.planner.edge_resolution = 0.005;
   EXPECT_NE(load_error(finer, path).find("build it again"), std::string::npos);
   Scene reweighted = piano;
-  reweighted.planner.numbers["distance_weights.rotation"] = 2.0;
+  reweighted.planner.distance_weights.rotation = 2.0;
   EXPECT_NE(load_error(reweighted, path).find("another scene"), std::string::npos);
   // Settings that do not decide validity leave it usable.
   Scene other_seed = piano;
-  other_seed.planner.numbers["seed"] = 99;
-  other_seed.planner.numbers["roadmap.milestones"] = 10;
+  other_seed.planner.seed = 99;
+  other_seed.planner.roadmap.milestones = 10;
   EXPECT_EQ(load_error(other_seed, path), "");
 }
 

@@ -86,4 +86,12 @@ class FlatSolids {
   int deepest_bvh = 0;
 };
 
+// The containment rule of the collision core, on the host in double (docs/design.md,
+// "Solids"): whether a component of body a lies inside a solid component of body b, or
+// one of b inside a solid of a, b posed in a's frame by X_AB (row-major rotation R_AB
+// and translation p_AB), their surfaces already known to be apart. For host checkers
+// that apply the same rule (the fcl backend).
+bool either_body_inside(const SolidsView& view, const BodySolids& a, const BodySolids& b,
+                        const double R_AB[3][3], const double p_AB[3], double margin);
+
 }  // namespace gplanner

@@ -1,6 +1,7 @@
 #pragma once
 // CUDA helpers shared by the GPU code of collision_gpu and knn_gpu (CUDA translation
-// units only; not installed): error checks, and owning buffers that only grow.
+// units only; not installed): error checks, owning buffers that only grow, and owned
+// events and streams.
 
 #include <cuda_runtime.h>
 
@@ -69,6 +70,39 @@ class GrowingBuffer {
   }
   T* data_ = nullptr;
   std::size_t capacity_ = 0;
+};
+
+// An owned CUDA handle (an event, a stream), destroyed with its owner.
+template <typename Handle, cudaError_t (*Destroy)(Handle)>
+class OwnedHandle {
+ public:
+  OwnedHandle() = default;
+  ~OwnedHandle() {
+    if (handle_) Destroy(handle_);
+  }
+  OwnedHandle(const OwnedHandle&) = delete;
+  OwnedHandle& operator=(const OwnedHandle&) = delete;
+  Handle get() const { return handle_; }
+
+ protected:
+  Handle handle_ = nullptr;
+};
+
+// A CUDA event (timing by default), made on construction.
+class Event : public OwnedHandle<cudaEvent_t, cudaEventDestroy> {
+ public:
+  explicit Event(unsigned flags = cudaEventDefault) {
+    check(cudaEventCreateWithFlags(&handle_, flags), "CUDA", "cudaEventCreate");
+  }
+};
+
+// A CUDA stream (non-blocking: it does not wait for the default stream), made on
+// construction.
+class Stream : public OwnedHandle<cudaStream_t, cudaStreamDestroy> {
+ public:
+  explicit Stream(unsigned flags = cudaStreamNonBlocking) {
+    check(cudaStreamCreateWithFlags(&handle_, flags), "CUDA", "cudaStreamCreate");
+  }
 };
 
 template <typename T>

@@ -31,15 +31,11 @@
 #include "gplanner/planner/planning/motion_bound.h"
 #include "gplanner/planner/planning/motion_checker.h"
 #include "gplanner/planner/planning/timed_batch_size.h"
+#include "gplanner/planner/scene/input_limits.h"  // kMaxEdgeSegments
 
 namespace gplanner {
 
 struct Scene;
-
-// Most segments the longest motion of a space may be cut into (scenes asking for more,
-// through edge_resolution or max_displacement, are refused at load): the final check,
-// finer by planner.final_check_refinement, then takes up to 1e6 samples an edge.
-inline constexpr double kMaxEdgeSegments = 1e5;
 
 struct LocalPlannerOptions {
   // Longest segment of each component as a fraction of that component's extent.

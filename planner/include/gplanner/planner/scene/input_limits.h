@@ -11,4 +11,9 @@ inline constexpr std::size_t kMaxMeshTriangles = 20000000;    // triangles of on
 inline constexpr std::size_t kMaxSceneTriangles = 50000000;   // obstacle triangles in all
 inline constexpr std::size_t kMaxRobotLinks = 1000;           // links of one URDF
 
+// Most segments the longest motion of a space may be cut into (scenes asking for more,
+// through edge_resolution or max_displacement, are refused at load): the final check,
+// finer by planner.final_check_refinement, then takes up to 1e6 samples an edge.
+inline constexpr double kMaxEdgeSegments = 1e5;
+
 }  // namespace gplanner

@@ -1,0 +1,309 @@
+#include "bench_runner.h"
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <iomanip>
+#include <ostream>
+#include <set>
+#include <sstream>
+
+#include "harness/plan_runs.h"
+#include "harness/query_runs.h"
+#include "gplanner/common/parallel_for.h"
+#include "gplanner/planner/output/text_escaping.h"
+#include "gplanner/planner/scene/scene.h"
+
+namespace gplan {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Messages from a worker to gplan, each "T LENGTH\n" and LENGTH bytes: R a record (a CSV
+// line), N a notice, D the group is done.
+void send(int fd, char type, const std::string& payload) {
+  const std::string message = std::string(1, type) + " " + std::to_string(payload.size()) + "\n" + payload;
+  std::size_t written = 0;
+  while (written < message.size()) {
+    const ssize_t n = ::write(fd, message.data() + written, message.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) _exit(3);  // gplan has gone: nothing to report to
+    written += static_cast<std::size_t>(n);
+  }
+}
+
+[[noreturn]] void run_worker(int fd, const BenchConfig& config, const gplanner::Scene& scene,
+                             const BenchGroup& group, int host_threads,
+                             const std::string& failed_paths_dir,
+                             const std::function<bool()>& should_stop) {
+  const auto emit = [fd](const BenchRecord& record) {
+    std::ostringstream line;
+    write_bench_csv_line(line, record);
+    send(fd, 'R', line.str());
+  };
+  const auto notice = [fd](const std::string& text) { send(fd, 'N', text); };
+  try {
+    if (config.kind == "planning") {
+      run_planning_group(scene, group.scene_name, config, group.choice, host_threads, emit,
+                         should_stop, notice, failed_paths_dir);
+    } else {
+      QueryTableOptions options;
+      options.queries = config.queries;
+      options.milestones = config.milestones;
+      options.neighbors = config.neighbors;
+      options.repeat = config.repeat;
+      options.seed = config.seed;
+      run_query_group(scene, config.name, group.scene_name, group.table, group.checker, options,
+                      emit, should_stop);
+    }
+  } catch (const std::exception& e) {
+    // The group could not be set up (a checker, a roadmap): one record says why.
+    BenchRecord record;
+    record.experiment = config.name;
+    record.scene = group.scene_name;
+    record.planner = config.kind == "planning" ? group.choice.planner : group.table;
+    record.checker = config.kind == "planning" ? group.choice.checker : group.checker;
+    record.status = "error";
+    record.note = e.what();
+    emit(record);
+  }
+  send(fd, 'D', "");
+  ::close(fd);
+  _exit(0);
+}
+
+struct Worker {
+  pid_t pid = -1;
+  int fd = -1;
+  std::size_t group = 0;
+  std::string buffer;
+  int records = 0;
+  bool done = false;
+  std::string killed;  // why gplan killed it
+  Clock::time_point last = Clock::now();
+};
+
+std::string describe(const BenchRecord& r) {
+  std::ostringstream text;
+  text << std::setprecision(3);
+  if (r.status == "measured") {
+    text << std::fixed << r.time_s * 1000 << " ms";
+    if (r.work >= 0) text << " (" << r.work << " " << (r.planner == "local-planning" ? "edges" : "queries") << ")";
+    return text.str();
+  }
+  text << r.status;
+  if (std::isfinite(r.time_s)) text << " in " << r.time_s << " s";
+  if (!r.path_check.empty()) text << ", FCL re-check " << r.path_check;
+  if (!r.note.empty()) text << " (" << gplanner::terminal_text(r.note.substr(0, 160)) << ")";
+  return text.str();
+}
+
+}  // namespace
+
+std::string BenchGroup::label() const {
+  return scene_name + " " + (table.empty() ? choice.label() : table + " " + checker);
+}
+
+std::vector<BenchGroup> bench_groups(const BenchConfig& config) {
+  std::vector<BenchGroup> alone, together;
+  for (std::size_t s = 0; s < config.scenes.size(); ++s) {
+    BenchGroup base;
+    base.scene = s;
+    base.scene_name = std::filesystem::path(config.scenes[s]).stem().string();
+    if (config.kind == "planning") {
+      for (const PlannerChoice& choice : config.planners) {
+        BenchGroup group = base;
+        group.choice = choice;
+        group.runs = config.runs;
+        group.alone = !choice.single_threaded();
+        group.gpu = choice.checker == "gpu";
+        (group.alone ? alone : together).push_back(group);
+      }
+    } else {
+      for (const std::string& table : config.tables) {
+        for (const std::string& checker : config.checkers) {
+          BenchGroup group = base;
+          group.table = table;
+          group.checker = checker;
+          group.runs = config.repeat;
+          alone.push_back(group);
+        }
+      }
+    }
+  }
+  alone.insert(alone.end(), together.begin(), together.end());
+  return alone;
+}
+
+std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
+                                          const std::vector<gplanner::Scene>& scenes,
+                                          const std::vector<BenchGroup>& groups, int jobs,
+                                          std::ostream& progress,
+                                          const std::function<bool()>& should_stop,
+                                          const std::function<void(const BenchRecord&)>& on_record,
+                                          const std::string& failed_paths_dir) {
+  std::vector<std::vector<BenchRecord>> records(groups.size());
+  std::vector<Worker> running;
+  std::set<std::string> notices;
+  std::vector<bool> started(groups.size(), false);
+  std::size_t next = 0;  // the first group not started
+  // A planning run with no result this long after the last is killed.
+  const double silence_limit_s = 2 * config.time_limit_s + 120;
+  // The host threads of a group beside others: an OMPL planner on the gpu backend answers
+  // small calls on the host's thread pool, which gets the cores the other `jobs` - 1
+  // single-threaded groups leave, so that neither it nor FCL's runs beside it are
+  // handicapped by the other. Groups that run alone get every core (0).
+  const int beside_others_threads = std::max(1, gplanner::resolve_thread_count(0) - (jobs - 1));
+
+  const auto start_worker = [&](std::size_t g) {
+    int fds[2];
+    if (::pipe(fds) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
+    progress.flush();
+    const pid_t pid = ::fork();
+    if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
+    if (pid == 0) {
+      ::close(fds[0]);
+      for (const Worker& other : running) ::close(other.fd);
+      run_worker(fds[1], config, scenes[groups[g].scene], groups[g],
+                 groups[g].alone ? 0 : beside_others_threads, failed_paths_dir, should_stop);
+    }
+    ::close(fds[1]);
+    Worker worker;
+    worker.pid = pid;
+    worker.fd = fds[0];
+    worker.group = g;
+    running.push_back(worker);
+    progress << "[" << g + 1 << "/" << groups.size() << "] " << groups[g].label() << ": "
+             << groups[g].runs << (config.kind == "planning" ? " runs" : " timed calls") << "\n";
+  };
+
+  const auto take_messages = [&](Worker& worker) {
+    for (;;) {
+      const std::size_t header_end = worker.buffer.find('\n');
+      if (header_end == std::string::npos) return;
+      const char type = worker.buffer[0];
+      const std::size_t length = std::stoul(worker.buffer.substr(2, header_end - 2));
+      if (worker.buffer.size() < header_end + 1 + length) return;
+      const std::string payload = worker.buffer.substr(header_end + 1, length);
+      worker.buffer.erase(0, header_end + 1 + length);
+      worker.last = Clock::now();
+      const BenchGroup& group = groups[worker.group];
+      if (type == 'R') {
+        const BenchRecord record = parse_bench_csv_record(payload);
+        records[worker.group].push_back(record);
+        on_record(record);
+        ++worker.records;
+        progress << "  " << group.label() << " " << worker.records << "/" << group.runs << ": "
+                 << describe(record) << "\n";
+      } else if (type == 'N') {
+        if (notices.insert(payload).second)
+          progress << "notice: " << gplanner::terminal_text(payload) << "\n";
+      } else if (type == 'D') {
+        worker.done = true;
+      }
+    }
+  };
+
+  const auto end_worker = [&](Worker& worker) {
+    ::close(worker.fd);
+    int status = 0;
+    while (::waitpid(worker.pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (worker.done || should_stop()) return;
+    // The run in progress ended without a result.
+    const BenchGroup& group = groups[worker.group];
+    BenchRecord record;
+    record.experiment = config.name;
+    record.scene = group.scene_name;
+    record.planner = config.kind == "planning" ? group.choice.planner : group.table;
+    record.checker = config.kind == "planning" ? group.choice.checker : group.checker;
+    record.run = worker.records;
+    record.seed = config.seed + static_cast<std::uint64_t>(worker.records);
+    record.status = "crash";
+    if (!worker.killed.empty()) {
+      record.note = worker.killed;
+    } else if (WIFSIGNALED(status)) {
+      record.note = std::string("the worker process ended by signal ") + std::to_string(WTERMSIG(status)) +
+                    " (" + strsignal(WTERMSIG(status)) + ")";
+    } else {
+      record.note = "the worker process exited with status " + std::to_string(WEXITSTATUS(status));
+    }
+    records[worker.group].push_back(record);
+    on_record(record);
+    progress << "  " << group.label() << " " << worker.records + 1 << "/" << group.runs << ": "
+             << describe(record) << "\n";
+  };
+
+  while (next < groups.size() || !running.empty()) {
+    if (should_stop()) {
+      for (Worker& worker : running) ::kill(worker.pid, SIGTERM);
+      for (Worker& worker : running) end_worker(worker);
+      running.clear();
+      break;
+    }
+    // Start what may start: a group that runs alone when nothing runs; single-threaded
+    // ones up to `jobs`, never beside one that runs alone, one on the GPU at a time.
+    for (std::size_t g = next; g < groups.size(); ++g) {
+      if (started[g]) continue;
+      const auto running_any = [&](bool BenchGroup::*what) {
+        return std::any_of(running.begin(), running.end(),
+                           [&](const Worker& w) { return groups[w.group].*what; });
+      };
+      const bool may_start =
+          groups[g].alone ? running.empty()
+                          : !running_any(&BenchGroup::alone) &&
+                                int(running.size()) < std::max(1, jobs) &&
+                                !(groups[g].gpu && running_any(&BenchGroup::gpu));
+      if (may_start) {
+        started[g] = true;
+        start_worker(g);
+      }
+      if (groups[g].alone) break;  // the order of those that run alone is kept
+    }
+    while (next < groups.size() && started[next]) ++next;
+    std::vector<pollfd> fds;
+    for (const Worker& worker : running) fds.push_back({worker.fd, POLLIN, 0});
+    const int ready = ::poll(fds.data(), fds.size(), 200);
+    if (ready < 0 && errno != EINTR) throw std::runtime_error(std::string("poll: ") + std::strerror(errno));
+    std::vector<bool> ended(running.size(), false);
+    for (std::size_t i = 0; i < running.size(); ++i) {
+      Worker& worker = running[i];
+      if (ready > 0 && (fds[i].revents & (POLLIN | POLLHUP | POLLERR))) {
+        char chunk[65536];
+        const ssize_t n = ::read(worker.fd, chunk, sizeof chunk);
+        if (n > 0) {
+          worker.buffer.append(chunk, static_cast<std::size_t>(n));
+          take_messages(worker);
+        } else if (n == 0 || errno != EINTR) {
+          ended[i] = true;
+        }
+      }
+      if (!ended[i] && config.kind == "planning" && worker.killed.empty() &&
+          std::chrono::duration<double>(Clock::now() - worker.last).count() > silence_limit_s) {
+        std::ostringstream why;
+        why << "no result " << silence_limit_s << " s after the run began (time limit "
+            << config.time_limit_s << " s); killed";
+        worker.killed = why.str();
+        ::kill(worker.pid, SIGKILL);
+      }
+    }
+    for (std::size_t i = running.size(); i-- > 0;) {
+      if (!ended[i]) continue;
+      end_worker(running[i]);
+      running.erase(running.begin() + static_cast<std::ptrdiff_t>(i));
+    }
+  }
+  std::vector<BenchRecord> all;
+  for (const auto& group_records : records) all.insert(all.end(), group_records.begin(), group_records.end());
+  return all;
+}
+
+}  // namespace gplan

@@ -1,0 +1,179 @@
+#include "bench_summary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <ostream>
+#include <sstream>
+
+#include "harness/query_runs.h"
+
+namespace gplan {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The value at fraction p of the sorted values (linear between neighbours).
+double quantile(const std::vector<double>& sorted, double p) {
+  if (sorted.empty()) return kNaN;
+  const double at = p * double(sorted.size() - 1);
+  const std::size_t low = static_cast<std::size_t>(std::floor(at));
+  const std::size_t high = std::min(low + 1, sorted.size() - 1);
+  return sorted[low] + (at - double(low)) * (sorted[high] - sorted[low]);
+}
+
+std::string seconds(double s) {
+  if (!std::isfinite(s)) return "-";
+  std::ostringstream text;
+  if (s < 1) {
+    text << std::fixed << std::setprecision(s < 0.01 ? 2 : 1) << s * 1000 << " ms";
+  } else {
+    text << std::fixed << std::setprecision(s < 10 ? 2 : 1) << s << " s";
+  }
+  return text.str();
+}
+
+std::string range(double low, double high) {
+  return std::isfinite(low) ? seconds(low) + " - " + seconds(high) : "-";
+}
+
+}  // namespace
+
+double median_of(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return quantile(values, 0.5);
+}
+
+std::vector<GroupSummary> summarize(const std::vector<BenchRecord>& records) {
+  std::vector<GroupSummary> groups;
+  std::map<std::string, std::size_t> index;
+  std::map<std::string, std::vector<const BenchRecord*>> members;
+  for (const BenchRecord& r : records) {
+    GroupSummary g;
+    g.experiment = r.experiment;
+    g.scene = r.scene;
+    g.planner = r.planner;
+    g.checker = r.checker;
+    if (!index.count(g.key())) {
+      index[g.key()] = groups.size();
+      groups.push_back(g);
+    }
+    members[g.key()].push_back(&r);
+  }
+  for (GroupSummary& g : groups) {
+    std::vector<double> times, lengths, check_shares;
+    std::vector<std::pair<double, bool>> timed;  // time, found no path
+    for (const BenchRecord* r : members[g.key()]) {
+      ++g.runs;
+      if (r->status == "crash" || r->status == "error") ++g.crashes;
+      if (!r->path_check.empty()) ++g.paths_checked;
+      if (r->path_check == "fail") ++g.path_failures;
+      if (r->solved) ++g.solved;
+      if (std::isfinite(r->check_time_s) && r->time_s > 0)
+        check_shares.push_back(r->check_time_s / r->time_s);
+      if (std::isfinite(r->time_s)) {
+        const bool failed = !r->solved && !is_query_table(r->planner);
+        timed.push_back({r->time_s, failed});
+        times.push_back(r->time_s);
+      }
+      const double length = std::isfinite(r->simplified_length) ? r->simplified_length : r->length;
+      if (r->solved && std::isfinite(length)) lengths.push_back(length);
+    }
+    g.success_rate = is_query_table(g.planner)
+                         ? (g.runs > g.crashes ? 1.0 : 0.0)
+                         : (g.runs ? double(g.solved) / g.runs : 0.0);
+    std::sort(times.begin(), times.end());
+    std::sort(timed.begin(), timed.end());
+    g.median_time_s = quantile(times, 0.5);
+    g.q1_time_s = quantile(times, 0.25);
+    g.q3_time_s = quantile(times, 0.75);
+    g.min_time_s = times.empty() ? kNaN : times.front();
+    g.max_time_s = times.empty() ? kNaN : times.back();
+    if (!timed.empty()) {
+      const std::size_t n = timed.size();
+      g.median_is_lower_bound = timed[n / 2].second || (n % 2 == 0 && timed[n / 2 - 1].second);
+    }
+    g.median_length = median_of(lengths);
+    g.median_check_share = median_of(check_shares);
+  }
+  // The FCL reference of each group.
+  for (GroupSummary& g : groups) {
+    g.speedup_over_fcl = kNaN;
+    const GroupSummary* reference = nullptr;
+    for (const GroupSummary& other : groups) {
+      if (other.scene != g.scene || other.checker != "fcl" || !std::isfinite(other.median_time_s))
+        continue;
+      if (is_query_table(g.planner) != is_query_table(other.planner)) continue;
+      if (is_query_table(g.planner) && other.planner != g.planner) continue;
+      if (other.planner == g.planner) {
+        reference = &other;
+        break;
+      }
+      if (!reference || other.median_time_s < reference->median_time_s) reference = &other;
+    }
+    if (reference && reference != &g && g.median_time_s > 0) {
+      g.reference = reference->planner + "@fcl";
+      g.speedup_over_fcl = reference->median_time_s / g.median_time_s;
+      g.reference_is_lower_bound = reference->median_is_lower_bound;
+    }
+  }
+  return groups;
+}
+
+void print_summary(std::ostream& out, const std::vector<GroupSummary>& groups) {
+  std::vector<std::vector<std::string>> rows;
+  rows.push_back({"scene", "planner@checker", "runs", "success", "median", "spread (q1-q3)",
+                  "min-max", "path length", "in checks", "vs FCL", "re-check", "crashes"});
+  for (const GroupSummary& g : groups) {
+    std::ostringstream success, length, in_checks, speedup, recheck;
+    const bool table = is_query_table(g.planner);
+    success << (table ? "-" : std::to_string(g.solved) + "/" + std::to_string(g.runs));
+    if (std::isfinite(g.median_length)) length << std::fixed << std::setprecision(2) << g.median_length;
+    else length << "-";
+    if (std::isfinite(g.median_check_share)) {
+      in_checks << std::fixed << std::setprecision(0) << 100 * g.median_check_share << "%";
+    } else {
+      in_checks << "-";
+    }
+    if (std::isfinite(g.speedup_over_fcl)) {
+      // A median that is a lower bound makes the ratio a bound: at least (">") when the
+      // reference's is, at most ("<") when this group's is, unknown ("~") when both are.
+      const char* bound = g.reference_is_lower_bound ? (g.median_is_lower_bound ? "~" : ">")
+                                                     : (g.median_is_lower_bound ? "<" : "");
+      speedup << std::setprecision(3) << bound << g.speedup_over_fcl
+              << "x (" << g.reference << ")";
+    } else {
+      speedup << "-";
+    }
+    if (g.path_failures) {
+      recheck << g.path_failures << " of " << g.paths_checked << " FAILED";
+    } else {
+      recheck << (g.paths_checked ? std::to_string(g.paths_checked) + " pass" : "-");
+    }
+    rows.push_back({g.scene, g.planner + "@" + g.checker, std::to_string(g.runs), success.str(),
+                    (g.median_is_lower_bound ? ">" : "") + seconds(g.median_time_s),
+                    range(g.q1_time_s, g.q3_time_s), range(g.min_time_s, g.max_time_s), length.str(),
+                    in_checks.str(), speedup.str(), recheck.str(), std::to_string(g.crashes)});
+  }
+  std::vector<std::size_t> width(rows[0].size(), 0);
+  for (const auto& row : rows)
+    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    std::ostringstream line;
+    for (std::size_t c = 0; c < rows[r].size(); ++c) {
+      line << (c ? "  " : "") << std::left << std::setw(int(width[c])) << rows[r][c];
+    }
+    std::string text = line.str();
+    text.erase(text.find_last_not_of(' ') + 1);
+    out << text << "\n";
+    if (r == 0) {
+      std::size_t total = 0;
+      for (std::size_t w : width) total += w + 2;
+      out << std::string(total - 2, '-') << "\n";
+    }
+  }
+}
+
+}  // namespace gplan

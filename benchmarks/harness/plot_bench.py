@@ -1,0 +1,425 @@
+#!/usr/bin/env python3
+"""Draws the plots of a `gplan bench` run from its CSV (written by benchmarks/harness/bench_record),
+with matplotlib, as PNG and SVG:
+
+  planning runs: per scene OUT_DIR/<scene>.png/.svg, the plan-time distribution of every
+    planner@checker (a box on a logarithmic time axis, every run a dot over it, runs that
+    found no path a distinct mark at their time, each box labelled solved/runs, the
+    fastest FCL group marked as the baseline), and OUT_DIR/plan_times.png/.svg, one panel
+    per scene with the same content;
+  query tables (collision-queries, local-planning): OUT_DIR/<table>.png/.svg, the median
+    batch time per checker per scene as grouped bars on a logarithmic axis.
+
+A CSV holding several experiments gets a folder OUT_DIR/<experiment>/ for each. The
+output is deterministic: drawn twice, the files are identical. gplan runs this script
+embedded in its binary (benchmarks/harness/bench_plots.cpp) as `python3 - CSV OUT_DIR`.
+
+usage: plot_bench.py CSV OUT_DIR
+exit:  0 drawn, 1 an output could not be written, 2 the CSV is not a gplan bench CSV
+"""
+import sys
+
+# Run as `python3 - CSV OUT_DIR`, the working folder comes first in sys.path: a csv.py or
+# matplotlib/ of the user's there must not stand in for the real ones.
+if sys.path and sys.path[0] == "":
+    del sys.path[0]
+
+import csv  # noqa: E402  (after sys.path is set)
+import math  # noqa: E402
+import os  # noqa: E402
+import statistics  # noqa: E402
+import tempfile  # noqa: E402
+import matplotlib
+
+matplotlib.use("Agg")
+from matplotlib import pyplot  # noqa: E402  (after the backend is chosen)
+from matplotlib import transforms  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
+
+# The columns of bench_csv_columns() in benchmarks/harness/bench_record.cpp, in order.
+COLUMNS = ["experiment", "scene", "planner", "checker", "run", "seed", "status", "solved",
+           "time_s", "simplify_time_s", "length", "simplified_length", "checks",
+           "check_time_s", "graph_states", "memory_mb", "path_check", "work", "collisions",
+           "note"]
+# The columns of CSVs written before check_time_s (runs until issue 22).
+COLUMNS_BEFORE_CHECK_TIME = [c for c in COLUMNS if c != "check_time_s"]
+QUERY_TABLES = {"collision-queries": "collision queries (milestone computation)",
+                "local-planning": "local planning (roadmap edges)"}
+PLANNER_ORDER = ["ours-lazyprm", "ours-prm", "ompl-rrtconnect", "ompl-prm", "ompl-lazyprm"]
+CHECKER_ORDER = ["gpu", "gpu-basic", "gpu-packet", "gpu-balanced", "cpu", "fcl"]
+CHECKER_COLOURS = {"gpu": "#1b7837", "gpu-basic": "#a6dba0", "gpu-packet": "#5aae61",
+                   "gpu-balanced": "#1b7837", "cpu": "#2166ac", "fcl": "#b2182b"}
+OTHER_COLOURS = ["#762a83", "#e08214", "#8c510a", "#01665e", "#4d4d4d"]
+SHORTEST_TIME_S = 1e-6  # times below it (a log axis has no 0) are drawn at it
+OVERVIEW = "plan_times"
+LEGEND_HEIGHT_IN = 0.6  # the planning figures' legend, below the panels
+TITLE_HEIGHT_IN = 0.35  # inches above the panels for the figure's title
+
+
+class BadCsv(Exception):
+    """The CSV is not one gplan bench wrote; the message names the file and line."""
+
+
+class Run:
+    """The fields of one CSV record the plots use."""
+
+    def __init__(self, experiment, scene, planner, checker, solved, time_s, work):
+        self.experiment = experiment
+        self.scene = scene
+        self.planner = planner
+        self.checker = checker
+        self.solved = solved
+        self.time_s = time_s  # None when not measured (a crash, an error)
+        self.work = work  # None when not given
+
+
+def parse_time(text):
+    if text == "":
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        raise BadCsv("'%s' is no number" % text)
+    if not math.isfinite(value) or value < 0:
+        raise BadCsv("'%s' is no time in seconds (finite, not negative)" % text)
+    return value
+
+
+def parse_count(text):
+    if text == "":
+        return None
+    if not text.isdigit() or len(text) > 18:
+        raise BadCsv("'%s' is no count" % text)
+    return int(text)
+
+
+def read_runs(path):
+    """The CSV's records as Runs; BadCsv on anything bench_record.cpp would not write."""
+    try:
+        with open(path, newline="", encoding="utf-8", errors="replace") as file:
+            reader = csv.reader(file, strict=True)
+            runs = []
+            try:
+                header = next(reader, None)
+                if header not in (COLUMNS, COLUMNS_BEFORE_CHECK_TIME):
+                    raise BadCsv("%s:1: not a gplan bench CSV (the header differs from "
+                                 "gplan's: %s)" % (path, ",".join(COLUMNS)))
+                columns = header
+                for fields in reader:
+                    line = reader.line_num
+                    if fields == []:
+                        continue
+                    if len(fields) != len(columns):
+                        raise BadCsv("%s:%d: %d fields, not %d"
+                                     % (path, line, len(fields), len(columns)))
+                    row = dict(zip(columns, fields))
+                    column = ""
+                    try:
+                        column = "solved"
+                        if row["solved"] not in ("0", "1"):
+                            raise BadCsv("'%s' is not 0 or 1" % row["solved"])
+                        column = "time_s"
+                        time_s = parse_time(row["time_s"])
+                        column = "work"
+                        work = parse_count(row["work"])
+                    except BadCsv as error:
+                        raise BadCsv("%s:%d: column %s: %s" % (path, line, column, error))
+                    for key in ("experiment", "scene", "planner", "checker"):
+                        if row[key] == "":
+                            raise BadCsv("%s:%d: column %s is empty" % (path, line, key))
+                    runs.append(Run(row["experiment"], row["scene"], row["planner"],
+                                    row["checker"], row["solved"] == "1", time_s, work))
+            except csv.Error as error:
+                raise BadCsv("%s:%d: %s" % (path, reader.line_num, error))
+    except OSError as error:
+        raise BadCsv("%s: cannot be read (%s)" % (path, error.strerror or error))
+    if not runs:
+        raise BadCsv("%s: holds no runs, nothing to plot" % path)
+    return runs
+
+
+def ordered(names, order):
+    """`names` without repeats, those in `order` first in its order, then the rest sorted."""
+    names = set(names)
+    return [n for n in order if n in names] + sorted(names - set(order))
+
+
+def in_order_seen(names):
+    """`names` without repeats, in the order they first come."""
+    return list(dict.fromkeys(names))
+
+
+def colour(checker, others):
+    if checker in CHECKER_COLOURS:
+        return CHECKER_COLOURS[checker]
+    return OTHER_COLOURS[others.index(checker) % len(OTHER_COLOURS)]
+
+
+def time_text(seconds):
+    """A time with a unit that keeps it short: 392 ms, 15.95 s, 48.2 µs."""
+    for unit, scale in (("s", 1.0), ("ms", 1e-3), ("µs", 1e-6), ("ns", 1e-9)):
+        if seconds >= scale or unit == "ns":
+            value = seconds / scale
+            digits = 0 if value >= 100 else 1 if value >= 10 else 2
+            return "%.*f %s" % (digits, value, unit)
+
+
+def file_stem(name):
+    """`name` as a file name: characters other than letters, digits, '.', '-' and '_' as
+    '_', never a hidden or relative name."""
+    stem = "".join(c if c.isascii() and (c.isalnum() or c in "._-") else "_" for c in name)
+    return "_" + stem if stem.startswith(".") or stem == "" else stem
+
+
+def check_file_names(figures):
+    """BadCsv when two of `figures` ((what, name) pairs: scenes, tables, the overview,
+    experiments' folders) would be written to the same file, before anything is drawn."""
+    taken = {}
+    for what, name in figures:
+        stem = file_stem(name)
+        if stem in taken:
+            raise BadCsv("%s '%s' and %s '%s' would both be written to %s; rename one"
+                         % (taken[stem] + (what, name, stem)))
+        taken[stem] = (what, name)
+
+
+def save(figure, out_dir, stem):
+    """Writes figure as out_dir/stem.png and .svg, each whole or not at all (a temporary
+    file renamed over it; a symbolic link is written through)."""
+    for extension, metadata in (("png", {"Software": None}),
+                                ("svg", {"Date": None, "Creator": None})):
+        path = os.path.realpath(os.path.join(out_dir, stem + "." + extension))
+        handle, temporary = tempfile.mkstemp(prefix="." + stem + ".", suffix=".part",
+                                             dir=os.path.dirname(path))
+        try:
+            with os.fdopen(handle, "wb") as file:
+                figure.savefig(file, format=extension, metadata=metadata)
+            if os.path.exists(path):
+                os.chmod(temporary, os.stat(path).st_mode & 0o7777)
+            else:
+                umask = os.umask(0)
+                os.umask(umask)
+                os.chmod(temporary, 0o666 & ~umask)
+            os.replace(temporary, path)
+        except BaseException:
+            os.unlink(temporary)
+            raise
+    pyplot.close(figure)
+
+
+# Planning runs ------------------------------------------------------------------------
+
+def planning_groups(runs):
+    """{(planner, checker): [Run]} in the order drawn (top to bottom)."""
+    planners = ordered((r.planner for r in runs), PLANNER_ORDER)
+    checkers = ordered((r.checker for r in runs), CHECKER_ORDER)
+    groups = {}
+    for planner in planners:
+        for checker in checkers:
+            members = [r for r in runs if r.planner == planner and r.checker == checker]
+            if members:
+                groups[(planner, checker)] = members
+    return groups
+
+
+def baseline_group(groups):
+    """The FCL group with the shortest median time: what the others are measured against."""
+    medians = {key: statistics.median(r.time_s for r in members if r.time_s is not None)
+               for key, members in groups.items()
+               if key[1] == "fcl" and any(r.time_s is not None for r in members)}
+    return min(medians, key=lambda key: (medians[key], key)) if medians else None
+
+
+def draw_planning_panel(axes, scene, runs, checkers):
+    """One scene's plan-time distributions on `axes`, a row per planner@checker."""
+    groups = planning_groups(runs)
+    baseline = baseline_group(groups)
+    keys = list(groups)
+    rows = range(len(keys), 0, -1)  # the first group at the top
+    label_place = transforms.blended_transform_factory(axes.transAxes, axes.transData)
+    for key, row in zip(keys, rows):
+        members = groups[key]
+        times = [max(r.time_s, SHORTEST_TIME_S) for r in members if r.time_s is not None]
+        is_baseline = key == baseline
+        if times:
+            axes.boxplot([times], positions=[row], vert=False, widths=0.6, whis=(0, 100),
+                         patch_artist=True, manage_ticks=False,
+                         boxprops={"facecolor": colour(key[1], checkers), "alpha": 0.35,
+                                   "linewidth": 2.5 if is_baseline else 1.0},
+                         medianprops={"color": "black",
+                                      "linewidth": 2.5 if is_baseline else 1.5})
+        timed = [r for r in members if r.time_s is not None]
+        for index, run in enumerate(timed):
+            # The dots spread over the box's height, in run order (no randomness).
+            offset = 0.0 if len(timed) == 1 else 0.44 * (index / (len(timed) - 1) - 0.5)
+            time_s = max(run.time_s, SHORTEST_TIME_S)
+            if run.solved:
+                axes.plot(time_s, row + offset, "o", markersize=4, color="black", alpha=0.7,
+                          zorder=3)
+            else:
+                axes.plot(time_s, row + offset, "x", markersize=6, markeredgewidth=1.5,
+                          color="#d7191c", zorder=3)
+        solved = sum(r.solved for r in members)
+        label = "%d/%d" % (solved, len(members))
+        if len(timed) < len(members):
+            label += " (%d untimed)" % (len(members) - len(timed))
+        axes.text(1.01, row, label, transform=label_place, va="center", fontsize=8)
+    axes.set_xscale("log")
+    axes.set_yticks(list(rows))
+    axes.set_yticklabels(["%s@%s%s" % (key[0], key[1], "\n(baseline)" if key == baseline
+                                       else "") for key in keys], fontsize=8)
+    for tick, key in zip(axes.get_yticklabels(), keys):
+        if key == baseline:
+            tick.set_fontweight("bold")
+    axes.set_ylim(0.4, len(keys) + 0.6)
+    axes.set_title(scene, fontsize=10, loc="left")
+    axes.grid(True, axis="x", which="major", alpha=0.3)
+    if baseline is not None:
+        median = statistics.median(max(r.time_s, SHORTEST_TIME_S) for r in groups[baseline]
+                                   if r.time_s is not None)
+        axes.axvline(median, color=CHECKER_COLOURS["fcl"], linestyle="--", linewidth=1,
+                     zorder=1)
+
+
+def planning_legend(figure, runs):
+    handles = [Line2D([], [], marker="o", linestyle="", color="black",
+                                       alpha=0.7, markersize=4, label="run that found a path"),
+               Line2D([], [], marker="x", linestyle="", color="#d7191c",
+                                       markersize=6, markeredgewidth=1.5,
+                                       label="run without a path (ran to the time limit)"),
+               Line2D([], [], color=CHECKER_COLOURS["fcl"], linestyle="--",
+                                       label="baseline's median (fastest FCL group)")]
+    note = "boxes: quartiles and median, whiskers: fastest and slowest run; right: solved/runs"
+    if any(r.time_s is not None and r.time_s < SHORTEST_TIME_S for r in runs):
+        note += "; times under 1 µs drawn at 1 µs"
+    figure.legend(handles=handles, loc="lower center", ncol=3, fontsize=8, frameon=False,
+                  title=note, title_fontsize=8)
+
+
+def draw_planning(experiment, runs, out_dir):
+    scenes = in_order_seen(r.scene for r in runs)
+    checkers = ordered((r.checker for r in runs), CHECKER_ORDER)
+    title = "%s: plan time per planner@checker, seconds (log scale)" % experiment
+    row_height = 0.45
+    for scene in scenes:
+        scene_runs = [r for r in runs if r.scene == scene]
+        rows = len(planning_groups(scene_runs))
+        figure, axes = pyplot.subplots(figsize=(9, 1.9 + row_height * rows))
+        draw_planning_panel(axes, scene, scene_runs, checkers)
+        axes.set_xlabel("plan time (s)")
+        figure.suptitle(title, fontsize=11)
+        planning_legend(figure, scene_runs)
+        figure.tight_layout(rect=(0, LEGEND_HEIGHT_IN / figure.get_figheight(),
+                                  1, 1 - TITLE_HEIGHT_IN / figure.get_figheight()))
+        save(figure, out_dir, file_stem(scene))
+
+    heights = [0.9 + row_height * len(planning_groups([r for r in runs if r.scene == s]))
+               for s in scenes]
+    figure, panels = pyplot.subplots(len(scenes), 1, figsize=(9, 1.4 + sum(heights)),
+                                     sharex=True, squeeze=False,
+                                     gridspec_kw={"height_ratios": heights})
+    for scene, axes in zip(scenes, panels[:, 0]):
+        draw_planning_panel(axes, scene, [r for r in runs if r.scene == scene], checkers)
+    panels[-1, 0].set_xlabel("plan time (s)")
+    figure.suptitle(title + ", every scene", fontsize=11)
+    planning_legend(figure, runs)
+    # The title's own band at the top: tight_layout does not keep the panels out of it.
+    figure.tight_layout(rect=(0, LEGEND_HEIGHT_IN / figure.get_figheight(),
+                              1, 1 - TITLE_HEIGHT_IN / figure.get_figheight()))
+    save(figure, out_dir, OVERVIEW)
+
+
+# Query tables -------------------------------------------------------------------------
+
+def draw_query_table(experiment, table, runs, out_dir):
+    """The median batch time per checker per scene, grouped bars on a log axis."""
+    scenes = in_order_seen(r.scene for r in runs)
+    checkers = ordered((r.checker for r in runs), CHECKER_ORDER)
+    width = 0.8 / len(checkers)
+    figure, axes = pyplot.subplots(figsize=(max(6.0, 1.3 + 0.45 * len(scenes) * len(checkers)),
+                                            5.2))
+    missing_place = transforms.blended_transform_factory(axes.transData, axes.transAxes)
+    for index, checker in enumerate(checkers):
+        for position, scene in enumerate(scenes):
+            x = position + (index - (len(checkers) - 1) / 2) * width
+            times = [r.time_s for r in runs
+                     if r.scene == scene and r.checker == checker and r.time_s is not None]
+            if not times:
+                if any(r.scene == scene and r.checker == checker for r in runs):
+                    axes.text(x, 0.01, "no time", transform=missing_place, rotation=90,
+                              ha="center", va="bottom", fontsize=7)
+                continue
+            median = max(statistics.median(times), SHORTEST_TIME_S)
+            bars = axes.bar(x, median, width, color=colour(checker, checkers))
+            axes.bar_label(bars, labels=[time_text(median)], rotation=90, padding=2,
+                           fontsize=7)
+    axes.legend(handles=[Patch(color=colour(c, checkers), label=c) for c in checkers],
+                title="checker", fontsize=8, title_fontsize=8, loc="upper left",
+                bbox_to_anchor=(1.01, 1))
+    axes.set_yscale("log")
+    # From the decade below the shortest bar, with room for the labels above the tallest.
+    heights = [bar.get_height() for container in axes.containers for bar in container]
+    if heights:
+        axes.set_ylim(10 ** math.floor(math.log10(min(heights))) / 2, max(heights) * 8)
+    work = {}
+    for r in runs:
+        if r.work is not None:
+            work.setdefault(r.scene, set()).add(r.work)
+    unit = "configurations" if table == "collision-queries" else "edges"
+    axes.set_xlim(-0.5, len(scenes) - 0.5)
+    axes.set_xticks(range(len(scenes)))
+    axes.set_xticklabels(["%s\n%s %s" % (s, "/".join(str(w) for w in sorted(work[s])), unit)
+                          if s in work else s for s in scenes], fontsize=8)
+    axes.set_ylabel("median batch time (s)")
+    axes.grid(True, axis="y", which="major", alpha=0.3)
+    axes.set_title("%s: %s\nmedian time of one batch call per checker, seconds (log scale)"
+                   % (experiment, QUERY_TABLES.get(table, table)), fontsize=11)
+    figure.tight_layout()
+    save(figure, out_dir, file_stem(table))
+
+
+def draw(runs, out_dir):
+    experiments = in_order_seen(r.experiment for r in runs)
+    check_file_names(("the experiment", e) for e in experiments)
+    for experiment in experiments:
+        own = [r for r in runs if r.experiment == experiment]
+        scenes = in_order_seen(r.scene for r in own if r.planner not in QUERY_TABLES)
+        tables = in_order_seen(r.planner for r in own if r.planner in QUERY_TABLES)
+        check_file_names([("the scene", s) for s in scenes] +
+                         [("the overview", OVERVIEW)] * bool(scenes) +
+                         [("the table", t) for t in tables])
+    for experiment in experiments:
+        folder = out_dir if len(experiments) == 1 else os.path.join(out_dir,
+                                                                    file_stem(experiment))
+        os.makedirs(folder, exist_ok=True)
+        own = [r for r in runs if r.experiment == experiment]
+        planning = [r for r in own if r.planner not in QUERY_TABLES]
+        if planning:
+            draw_planning(experiment, planning, folder)
+        for table in in_order_seen(r.planner for r in own if r.planner in QUERY_TABLES):
+            draw_query_table(experiment, table, [r for r in own if r.planner == table],
+                             folder)
+
+
+def main(argv):
+    if len(argv) != 3:
+        print("usage: plot_bench.py CSV OUT_DIR", file=sys.stderr)
+        return 2
+    matplotlib.rcdefaults()  # the same figures whatever the user's matplotlibrc says
+    matplotlib.rcParams["svg.hashsalt"] = "gplan bench"
+    matplotlib.rcParams["path.simplify"] = True
+    try:
+        draw(read_runs(argv[1]), argv[2])
+    except BadCsv as error:
+        print("plot_bench.py: %s" % error, file=sys.stderr)
+        return 2
+    except OSError as error:
+        print("plot_bench.py: %s: cannot be written (%s)"
+              % (error.filename or argv[2], error.strerror or error), file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

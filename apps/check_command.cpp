@@ -100,185 +100,232 @@ std::optional<GpuCallReport> gpu_call(gplanner::CollisionChecker* checker) {
                        gpu->last_stats()};
 }
 
-}  // namespace
+// What `gplan check` was asked, read from its arguments and checked before any work.
+struct CheckRequest {
+  std::string scene_file;
+  std::size_t n = 0;
+  unsigned long long seed = 1;
+  std::string backend, compare;
+  std::size_t repeat = 1;
+  gplanner::CheckerOptions options;
+  bool has_out = false;  // --out FILE given
+  std::string out;
+  bool pairs = false, json = false;
+};
 
-int run_check(int argc, char** argv) {
+CheckRequest read_check_request(int argc, char** argv) {
   const CommandLine args(argc, argv, 2,
                          {"n", "seed", "backend", "traversal", "compare", "threads",
                           "memory-cap-mb", "small-batch", "out", "repeat"},
                          {"json", "pairs"});
-  catch_interruptions();
   if (args.positionals().size() != 1)
     throw UsageError("gplan check takes one scene file, not " +
                      std::to_string(args.positionals().size()) + "; give exactly one");
-  const std::string scene_file = args.positionals()[0];
-  // Counts within ranges that keep the run feasible; --n's memory is checked below,
-  // once the scene gives the row width.
-  const std::size_t n = args.count("n", 10000, 1, kMaxRows);
-  const unsigned long long seed = args.count("seed", 1, 0, ~0ULL);
-  const std::string backend = args.text("backend", "fcl");
-  const std::string compare = args.text("compare", "");
-  const std::size_t repeat = args.count("repeat", 1, 1, 1000);
-  gplanner::CheckerOptions options;
-  options.threads = static_cast<int>(args.count("threads", 0, 0, gplanner::kMaxThreads));
-  options.gpu.memory_cap_bytes = args.count("memory-cap-mb", 0, 0, 1ULL << 24) << 20;
+  CheckRequest r;
+  r.scene_file = args.positionals()[0];
+  // Counts within ranges that keep the run feasible; --n's memory is checked once the
+  // scene gives the row width.
+  r.n = args.count("n", 10000, 1, kMaxRows);
+  r.seed = args.count("seed", 1, 0, ~0ULL);
+  r.backend = args.text("backend", "fcl");
+  r.compare = args.text("compare", "");
+  r.repeat = args.count("repeat", 1, 1, 1000);
+  r.options.threads = static_cast<int>(args.count("threads", 0, 0, gplanner::kMaxThreads));
+  r.options.gpu.memory_cap_bytes = args.count("memory-cap-mb", 0, 0, 1ULL << 24) << 20;
   // gplan check times the GPU's traversal: no call is answered on the host, whatever
   // its size (the planners' gpu backend routes small calls there).
-  options.gpu.host_calls_up_to = 0;
+  r.options.gpu.host_calls_up_to = 0;
   if (args.has("small-batch"))
-    options.gpu.warp_per_pair_up_to = args.count("small-batch", 0, 0, kMaxRows);
+    r.options.gpu.warp_per_pair_up_to = args.count("small-batch", 0, 0, kMaxRows);
   if (args.has("traversal") &&
-      !gplanner::parse_traversal(args.text("traversal", ""), &options.gpu.traversal)) {
+      !gplanner::parse_traversal(args.text("traversal", ""), &r.options.gpu.traversal)) {
     throw UsageError("--traversal: '" + args.text("traversal", "") +
                      "' is not one of basic, packet, balanced");
   }
   // The GPU's settings change nothing on the other backends: say so rather than ignore
   // them (a memory cap meant to be tested would go untested).
   for (const char* gpu_only : {"traversal", "memory-cap-mb", "small-batch"}) {
-    if (args.has(gpu_only) && backend != "gpu" && compare != "gpu") {
+    if (args.has(gpu_only) && r.backend != "gpu" && r.compare != "gpu") {
       throw UsageError(std::string("--") + gpu_only +
                        " applies to the gpu backend only; add --backend gpu or --compare gpu");
     }
   }
+  r.has_out = args.has("out");
+  r.out = args.text("out", "");
+  r.pairs = args.flag("pairs");
+  r.json = args.flag("json");
+  if (r.pairs && !r.has_out)
+    throw UsageError("--pairs adds the colliding pair to each row of --out FILE; add --out");
+  return r;
+}
 
+// Refuses a batch whose rows would take more than half of the machine's memory.
+void check_batch_fits(std::size_t n, std::size_t width) {
+  // The batch, its verdicts and one run's verdicts.
+  const double batch_bytes = static_cast<double>(n) * (width * sizeof(float) + 2);
+  if (gplanner::fits_in_memory(batch_bytes)) return;
+  throw UsageError("--n " + std::to_string(n) + ": " + std::to_string(width) +
+                   "-float rows need about " + gplanner::memory_text(batch_bytes) +
+                   ", more than half of this machine's " +
+                   gplanner::memory_text(gplanner::physical_memory_bytes()) +
+                   " of memory; give a smaller --n");
+}
+
+// The report's description of the scene.
+void describe_scene(const std::string& scene_file, const gplanner::Scene& scene,
+                    CheckReport* report) {
+  report->scene_file = scene_file;
+  report->scene_name = scene.name;
+  report->robot_name = scene.robot.name;
+  report->links = scene.robot.links.size();
+  report->robot_triangles = scene.robot.triangle_count();
+  report->checked_pairs = scene.robot.checked_pairs().size();
+  report->base = gplanner::base_type_name(scene.space.base);
+  report->dof = scene.space.dof();
+  report->width = scene.space.width();
+  report->obstacles = scene.obstacles.size();
+  report->obstacle_triangles = scene.obstacle_triangle_count();
+  report->dropped_obstacle_triangles = scene.dropped_obstacle_triangles;
+  report->delta = gplanner::tolerance_delta(scene);
+}
+
+// Checks the batch `repeat` times (the first run pays for allocations a planner makes
+// once) and returns the median time; every run must give the same verdicts. False when
+// interrupted.
+bool check_repeated(gplanner::CollisionChecker* checker, const std::vector<float>& q,
+                    std::size_t n, std::size_t width, std::size_t repeat,
+                    std::vector<std::uint8_t>* verdicts, double* median_s) {
+  std::vector<double> run_s;
+  for (std::size_t r = 0; r < repeat; ++r) {
+    std::vector<std::uint8_t> run_verdicts(n);
+    run_s.push_back(check_timed(checker, q, n, width, &run_verdicts));
+    if (interrupted()) return false;
+    if (r > 0 && run_verdicts != *verdicts)
+      throw std::runtime_error("the " + checker->backend() +
+                               " backend gave different verdicts for the same batch");
+    verdicts->swap(run_verdicts);
+  }
+  std::sort(run_s.begin(), run_s.end());
+  *median_s = run_s[run_s.size() / 2];
+  return true;
+}
+
+// --pairs: per colliding row, the pair FCL finds colliding (a link, then an obstacle's
+// key or a second link), "- -" for a free row; a colliding row where no surfaces meet
+// (inside a closed body, or within the band) gets the closest pair and "(no-contact)".
+// False when interrupted.
+bool colliding_pairs(const gplanner::Scene& scene, const std::vector<float>& q,
+                     const std::vector<std::uint8_t>& verdicts, std::vector<std::string>* columns) {
+  const std::size_t width = scene.space.width();
+  gplanner::CollisionReporter reporter(scene);
+  columns->assign(verdicts.size(), "- -");
+  for (std::size_t i = 0; i < verdicts.size(); ++i) {
+    if (interrupted()) return false;
+    if (!verdicts[i]) continue;
+    const gplanner::CollisionPair pair = reporter.first_pair(&q[i * width]);
+    (*columns)[i] = pair.a_key + " " + pair.b_key + (pair.found ? "" : " (no-contact)");
+  }
+  return true;
+}
+
+// --out: each configuration's values as the scene file gives them (world or plane
+// positions, not relative to the scene frame), summed in double, then its verdict and
+// (--pairs) its pair; far from the origin (the frame moved) with all of a double's
+// digits, since nine would not place a position within the band.
+void write_verdict_file(const std::string& out, const gplanner::Scene& scene,
+                        const std::vector<float>& q, const std::vector<std::uint8_t>& verdicts,
+                        const std::vector<std::string>& pair_columns) {
+  const gplanner::ConfigurationSpace& space = scene.space;
+  const std::size_t width = space.width();
+  const int position_precision = scene.p_WS.isZero() ? 9 : 17;
+  std::vector<double> values(width);
+  gplanner::write_file_atomically(out, [&](std::ostream& stream) {
+    for (std::size_t i = 0; i < verdicts.size(); ++i) {
+      space.to_file_values(&q[i * width], values.data());
+      for (std::size_t k = 0; k < width; ++k) {
+        const bool position = static_cast<int>(k) < space.position_width();
+        stream << std::setprecision(position ? position_precision : 9)
+               << (position ? values[k] : q[i * width + k]) << ' ';
+      }
+      stream << int(verdicts[i]);
+      if (!pair_columns.empty()) stream << ' ' << pair_columns[i];
+      stream << '\n';
+    }
+  });
+}
+
+}  // namespace
+
+int run_check(int argc, char** argv) {
+  const CheckRequest request = read_check_request(argc, argv);
+  catch_interruptions();
   // Refuse an output file that cannot be written before doing the work, not after
   // (gplanner::check_output_paths): against the scene file, then every file it loads.
-  const std::string out = args.text("out", "");
-  if (args.flag("pairs") && !args.has("out"))
-    throw UsageError("--pairs adds the colliding pair to each row of --out FILE; add --out");
   std::vector<gplanner::NamedFile> outputs;
-  if (args.has("out")) outputs.push_back({"--out", out});
-  std::vector<gplanner::NamedFile> inputs{{"the scene file", scene_file}};
+  if (request.has_out) outputs.push_back({"--out", request.out});
+  std::vector<gplanner::NamedFile> inputs{{"the scene file", request.scene_file}};
   gplanner::check_output_paths(outputs, inputs);
   const std::vector<std::string> unwritten =
-      outputs.empty() ? std::vector<std::string>{} : std::vector<std::string>{"--out " + out};
+      outputs.empty() ? std::vector<std::string>{} : std::vector<std::string>{"--out " + request.out};
 
   const auto load_start = Clock::now();
-  const gplanner::Scene scene = gplanner::load_scene(scene_file);
+  const gplanner::Scene scene = gplanner::load_scene(request.scene_file);
   for (const std::string& notice : scene.notices)
     std::cerr << "notice: " << gplanner::terminal_text(notice) << "\n";
   for (const std::string& file : scene.input_files)
     inputs.push_back({"a file the scene loads", file});
   gplanner::check_output_paths(outputs, inputs);
   if (interrupted()) return report_interruption({}, unwritten);
-  const double load_s = seconds_since(load_start);
-  const gplanner::ConfigurationSpace& space = scene.space;
-  const std::size_t width = space.width();
-  // The batch, its verdicts and one run's verdicts, before allocating them.
-  const double batch_bytes = static_cast<double>(n) * (width * sizeof(float) + 2);
-  if (!gplanner::fits_in_memory(batch_bytes)) {
-    throw UsageError("--n " + std::to_string(n) + ": " + std::to_string(width) +
-                     "-float rows need about " + gplanner::memory_text(batch_bytes) +
-                     ", more than half of this machine's " +
-                     gplanner::memory_text(gplanner::physical_memory_bytes()) +
-                     " of memory; give a smaller --n");
-  }
-  const auto pairs = scene.robot.checked_pairs();
-  const double delta = gplanner::tolerance_delta(scene);
+  CheckReport report;
+  report.load_s = seconds_since(load_start);
+  describe_scene(request.scene_file, scene, &report);
+  const std::size_t n = request.n, width = scene.space.width();
+  check_batch_fits(n, width);
 
   std::unique_ptr<gplanner::CollisionChecker> checker =
-      make_checker(scene, "backend", backend, options);
+      make_checker(scene, "backend", request.backend, request.options);
   gplanner::check_start_and_goal(scene, checker.get());
-  const double line_collision = gplanner::first_collision_on_straight_line(scene, checker.get());
+  report.straight_line_collision = gplanner::first_collision_on_straight_line(scene, checker.get());
+  report.backend = checker->backend();
+  report.n = n;
+  report.seed = request.seed;
+  report.repeat = request.repeat;
 
   std::vector<float> q(n * width);
-  std::mt19937_64 rng(seed);
-  for (std::size_t i = 0; i < n; ++i) space.sample_uniform(&rng, &q[i * width]);
-  // --repeat: the same batch several times, the median time reported (the first run
-  // pays for allocations a planner makes once); every run must give the same verdicts.
+  std::mt19937_64 rng(request.seed);
+  for (std::size_t i = 0; i < n; ++i) scene.space.sample_uniform(&rng, &q[i * width]);
   std::vector<std::uint8_t> verdicts(n);
-  std::vector<double> run_s;
-  for (std::size_t r = 0; r < repeat; ++r) {
-    std::vector<std::uint8_t> run_verdicts(n);
-    run_s.push_back(check_timed(checker.get(), q, n, width, &run_verdicts));
-    if (interrupted()) return report_interruption({}, unwritten);
-    if (r > 0 && run_verdicts != verdicts)
-      throw std::runtime_error("the " + checker->backend() +
-                               " backend gave different verdicts for the same batch");
-    verdicts.swap(run_verdicts);
-  }
-  std::vector<double> sorted_s = run_s;
-  std::sort(sorted_s.begin(), sorted_s.end());
-  const double check_s = sorted_s[sorted_s.size() / 2];
-  CheckReport report;
-  report.scene_file = scene_file;
-  report.scene_name = scene.name;
-  report.robot_name = scene.robot.name;
-  report.links = scene.robot.links.size();
-  report.robot_triangles = scene.robot.triangle_count();
-  report.checked_pairs = pairs.size();
-  report.base = gplanner::base_type_name(space.base);
-  report.dof = space.dof();
-  report.width = width;
-  report.obstacles = scene.obstacles.size();
-  report.obstacle_triangles = scene.obstacle_triangle_count();
-  report.dropped_obstacle_triangles = scene.dropped_obstacle_triangles;
-  report.load_s = load_s;
-  report.delta = delta;
-  report.backend = checker->backend();
-  report.straight_line_collision = line_collision;
-  report.n = n;
-  report.seed = seed;
+  if (!check_repeated(checker.get(), q, n, width, request.repeat, &verdicts, &report.seconds))
+    return report_interruption({}, unwritten);
   for (const std::uint8_t v : verdicts) report.collisions += v;
-  report.seconds = check_s;
-  report.repeat = repeat;
   report.gpu = gpu_call(checker.get());
 
   // --compare: the same configurations through a second backend, every disagreement
   // judged by FCL's verdict and distance against the band.
-  if (!compare.empty()) {
+  if (!request.compare.empty()) {
     std::unique_ptr<gplanner::CollisionChecker> other =
-        make_checker(scene, "compare", compare, options);
+        make_checker(scene, "compare", request.compare, request.options);
     CheckReport::Compare& c = report.compare.emplace();
     c.backend = other->backend();
     std::vector<std::uint8_t> other_verdicts(n);
     c.seconds = check_timed(other.get(), q, n, width, &other_verdicts);
     if (interrupted()) return report_interruption({}, unwritten);
-    gplanner::FclChecker judge(scene, options.threads);
+    gplanner::FclChecker judge(scene, request.options.threads);
     c.comparison = gplanner::compare_verdicts(q.data(), n, width, verdicts.data(),
-                                              other_verdicts.data(), &judge, delta);
+                                              other_verdicts.data(), &judge, report.delta);
     c.gpu = gpu_call(other.get());
   }
 
-  if (!out.empty()) {
-    // Values as the scene file gives them (world or plane positions, not relative to the
-    // scene frame), summed in double; far from the origin (the frame moved) with all of
-    // a double's digits, since nine would not place a position within the band.
-    const int position_precision = scene.p_WS.isZero() ? 9 : 17;
-    std::vector<double> values(width);
-    // --pairs: per colliding row, the pair FCL finds colliding (a link, then an obstacle's
-    // key or a second link), "- -" for a free row; a colliding row where no surfaces
-    // meet (inside a closed body, or within the band) gets the closest pair and
-    // "(no-contact)".
+  if (!request.out.empty()) {
     std::vector<std::string> pair_columns;
-    if (args.flag("pairs")) {
-      gplanner::CollisionReporter reporter(scene);
-      pair_columns.assign(n, "- -");
-      for (std::size_t i = 0; i < n; ++i) {
-        if (interrupted()) return report_interruption({}, unwritten);
-        if (!verdicts[i]) continue;
-        const gplanner::CollisionPair pair = reporter.first_pair(&q[i * width]);
-        pair_columns[i] = pair.a_key + " " + pair.b_key + (pair.found ? "" : " (no-contact)");
-      }
-    }
+    if (request.pairs && !colliding_pairs(scene, q, verdicts, &pair_columns))
+      return report_interruption({}, unwritten);
     if (interrupted()) return report_interruption({}, unwritten);
-    gplanner::write_file_atomically(out, [&](std::ostream& stream) {
-      for (std::size_t i = 0; i < n; ++i) {
-        space.to_file_values(&q[i * width], values.data());
-        for (std::size_t k = 0; k < width; ++k) {
-          const bool position = static_cast<int>(k) < space.position_width();
-          stream << std::setprecision(position ? position_precision : 9)
-                 << (position ? values[k] : q[i * width + k]) << ' ';
-        }
-        stream << int(verdicts[i]);
-        if (!pair_columns.empty()) stream << ' ' << pair_columns[i];
-        stream << '\n';
-      }
-    });
-    report.written = out;
+    write_verdict_file(request.out, scene, q, verdicts, pair_columns);
+    report.written = request.out;
   }
   std::cout << report.text();
-  if (args.flag("json")) std::cout << json_line(report.json());
+  if (request.json) std::cout << json_line(report.json());
   // A comparison that finds the band broken fails the run, so scripts notice.
   if (report.band_broken()) {
     std::cerr << "gplan: the checkers disagree outside the tolerance band\n";

@@ -8,7 +8,7 @@
 # usage: [AGREEMENT=1] benchmarks/scripts/collision_table.sh [-d SHARED_DATA] GPLAN...
 #   GPLAN: how to start gplan, e.g. build/apps/gplan or ".gpu/run .gpu/bin/gplan"
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 data=""
 if [ "${1:-}" = "-d" ]; then data=$(cd "$2" && pwd); shift 2; fi
 gplan=("$@")

@@ -14,7 +14,7 @@
 # pass added) and OUT_DIR/summary.txt (one line per comparison: same or DIFFERENT);
 # exits 1 when anything differs.
 set -uo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 [ $# -eq 3 ] || { sed -n 2,17p "$0"; exit 2; }
 out=$1
 read -r -a old <<< "$2"

@@ -7,9 +7,9 @@
 #      cmake -B build -DCMAKE_CUDA_ARCHITECTURES=90 && cmake --build build -j
 #      benchmarks/scripts/reproduce.sh --bundle [BUILD_DIR]        (BUILD_DIR: default build)
 #    --bundle packs into .gpu/ the programs the tables use (BUILD_DIR/apps/gplan,
-#    BUILD_DIR/bench/gplanner_{knn_bench,call_sizes,peak_rates,thread_scaling,
+#    BUILD_DIR/apps/gplan-bench, BUILD_DIR/benchmarks/gplanner_{knn_bench,call_sizes,peak_rates,thread_scaling,
 #    link_broad_phase},
-#    BUILD_DIR/tests/gplanner_{tests,stability_tests}) with the real PR2 and Talos
+#    BUILD_DIR/tests/gplanner_{tests,stability_tests}, BUILD_DIR/benchmarks/tests/gplanner_bench_tests) with the real PR2 and Talos
 #    data from ../shared/data, and writes the commit to .gpu/commit ("-dirty" when
 #    tracked files differ from it). .gpu/ must travel with the checkout.
 # 2. On the GPU machine, from the repository root:
@@ -21,7 +21,7 @@
 #                 packet, balanced, cpu and fcl, medians of 5 calls
 #      agreement  gpu (each traversal) and cpu against fcl,           agreement.jsonl
 #                 100,000 configurations per scene
-#      plan       gplan bench benchmarks/config/plan_times.yaml: ours      plan_times/
+#      plan       gplan-bench benchmarks/config/plan_times.yaml: ours      plan_times/
 #                 (lazy PRM, PRM) against OMPL's LazyPRM, PRM,
 #                 RRTConnect with FCL, 10 runs of up to 60 s
 #      knn        100,000 piano milestones, k = 15: GPU, CPU, GNAT    knn.jsonl
@@ -30,13 +30,13 @@
 #                 --milestones 10000000: wall time, setup, planning
 #      hostile    the hostile-input catalogue through gplan (issue  hostile.txt
 #                 19), its plan cases on the gpu backend
-#      seed-tables the seed's three tables through gplan bench     seed_collision_queries/,
+#      seed-tables the seed's three tables through gplan-bench     seed_collision_queries/,
 #                 (benchmarks/config/seed_*.yaml)                          seed_local_planning/,
 #                                                                     seed_pr2/
-#      regression gplan bench benchmarks/config/regression.yaml, OMPL's   regression/
+#      regression gplan-bench benchmarks/config/regression.yaml, OMPL's   regression/
 #                 single-threaded planners 4 fewer than the CPUs at
 #                 a time
-#      error-time gplan bench benchmarks/config/error_time.yaml: error     error_time/
+#      error-time gplan-bench benchmarks/config/error_time.yaml: error     error_time/
 #                 against time for the piano and the helicopter
 #                 (issue 21)
 #      error-time-articulated  the same for the humanoid and      error_time_articulated/
@@ -44,10 +44,10 @@
 #      call-sizes gplanner_call_sizes on every shipped scene: the    call_sizes.md
 #                 gpu backend's routing, the cost of a call of each
 #                 size and of one OMPL checkMotion (issue 22)
-#      ompl-plugin gplan bench benchmarks/config/ompl_plugin.yaml: OMPL's ompl_plugin/
+#      ompl-plugin gplan-bench benchmarks/config/ompl_plugin.yaml: OMPL's ompl_plugin/
 #                 RRTConnect, PRM and LazyPRM with FCL and through
 #                 the plugin on the gpu and cpu backends (issue 22)
-#      broad-phase gplan bench benchmarks/config/broad_phase.yaml: the     broad_phase/
+#      broad-phase gplan-bench benchmarks/config/broad_phase.yaml: the     broad_phase/
 #                 seed's sphere all-pairs table (64 to 320 spheres,
 #                 CPU against GPU) and the scalable GPU broad phases
 #                 up to 1,000,000 spheres (issue 23); results.md holds
@@ -78,15 +78,16 @@ set -euo pipefail
 usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; }
 say() { echo "[reproduce $(date +%H:%M:%S)] $*" >&2; }
 
-root=$(cd "$(dirname "$0")/.." && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
 
 if [ "${1:-}" = --bundle ]; then
   build=${2:-build}
   cd "$root"
-  programs=(apps/gplan bench/gplanner_knn_bench bench/gplanner_call_sizes
-            bench/gplanner_peak_rates bench/gplanner_thread_scaling
-            bench/gplanner_link_broad_phase tests/gplanner_tests
-            tests/gplanner_stability_tests)
+  programs=(apps/gplan apps/gplan-bench benchmarks/gplanner_knn_bench
+            benchmarks/gplanner_call_sizes benchmarks/gplanner_peak_rates
+            benchmarks/gplanner_thread_scaling benchmarks/gplanner_link_broad_phase
+            tests/gplanner_tests tests/gplanner_stability_tests
+            benchmarks/tests/gplanner_bench_tests)
   # gpu-bundle takes its options before the programs.
   ../shared/tools/gpu-bundle -d ../shared/data/moveit_resources_pr2_description \
     -d ../shared/data/pr2_moveit_config -d ../shared/data/example-robot-data \
@@ -125,6 +126,7 @@ data=$bundle/data
 [ -x "$run" ] || { echo "reproduce.sh: no bundle at $bundle (run benchmarks/scripts/reproduce.sh --bundle on the build machine)" >&2; exit 2; }
 export GPLANNER_SHARED_DATA=$data                # tests that read the real PR2 and Talos
 export GPLANNER_GPLAN="$run $bin/gplan"          # tests that start gplan
+export GPLANNER_GPLAN_BENCH="$run $bin/gplan-bench"  # the harness's tests that start gplan-bench
 cores=$(nproc)
 
 {
@@ -162,10 +164,10 @@ time_limit_table() {  # one JSON line per run: the run's --json line and the wal
     done
   done
 }
-bench_config() {  # gplan bench CONFIG into OUT_SUBDIR; its exits 3 and 5 are findings
+bench_config() {  # gplan-bench CONFIG into OUT_SUBDIR; its exits 3 and 5 are findings
   local config=$1 dir=$2 status=0
   shift 2
-  "$run" "$bin/gplan" bench "$config" -o "$dir" --no-plots "$@" || status=$?
+  "$run" "$bin/gplan-bench" "$config" -o "$dir" --no-plots "$@" || status=$?
   case $status in
     0) ;;
     3) say "$config: a returned path failed the FCL re-check (see $dir/summary.txt)" ;;
@@ -188,6 +190,7 @@ for t in "${tables[@]}"; do
     gpu-tests)
       { gtest gplanner_tests --gtest_filter='*Gpu*' || failed+=("gplanner_tests")
         gtest gplanner_stability_tests --gtest_filter='*Gpu*' || failed+=("gplanner_stability_tests")
+        gtest gplanner_bench_tests --gtest_filter='*Gpu*' || failed+=("gplanner_bench_tests")
       } > "$out/gpu_tests.txt"
       grep -E '^== |^\[  (PASSED|FAILED|SKIPPED) +\] [0-9]' "$out/gpu_tests.txt" >&2 || true
       ;;
@@ -215,7 +218,7 @@ for t in "${tables[@]}"; do
       grep -E '^\[  (PASSED|FAILED) +\]' "$out/hostile.txt" >&2 || true
       ;;
     seed-tables)
-      # The plots are drawn on the build machine (gplan bench --report): the GPU
+      # The plots are drawn on the build machine (gplan-bench --report): the GPU
       # machine has no matplotlib.
       for config in seed_collision_queries seed_local_planning seed_pr2; do
         bench_config "benchmarks/config/$config.yaml" "$out/$config" || failed+=("$t ($config)")
@@ -244,7 +247,7 @@ for t in "${tables[@]}"; do
       ;;
     broad-phase)
       # Not through bench_config: here exit 3 is a failure, a method whose pairs differed
-      # from the reference's (MISMATCH lines in the log). Plots: gplan bench is run again
+      # from the reference's (MISMATCH lines in the log). Plots: gplan-bench is run again
       # with matplotlib, or plot_broad_phase.py on results.csv.
       status=0
       "$run" "$bin/gplan" bench benchmarks/config/broad_phase.yaml -o "$out/broad_phase" \

@@ -21,7 +21,7 @@ using gplanner::testing::ScratchFolder;
 
 TEST(BenchConfig, EveryShippedConfigurationLoads) {
   int loaded = 0;
-  for (const auto& entry : fs::directory_iterator(fs::path(project_root()) / "config" / "bench")) {
+  for (const auto& entry : fs::directory_iterator(fs::path(project_root()) / "benchmarks" / "config")) {
     if (entry.path().extension() != ".yaml" ||
         entry.path().string().find(".baseline.") != std::string::npos)
       continue;

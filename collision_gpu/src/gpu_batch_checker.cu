@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "gplanner/collision_gpu/model_view.h"
+#include "device_collision_model.cuh"
 #include "gplanner/common/cuda_memory.cuh"
 #include "traversals/balanced.cuh"
 #include "traversals/basic.cuh"
@@ -29,7 +30,8 @@ using traversals::check_cuda;
 struct GpuBatchChecker::Impl {
   GpuCheckerOptions options;
   FlatCollisionModel host;
-  CollisionModelView view{};
+  std::optional<DeviceCollisionModel> device_model;  // uploaded once a device is known
+  CollisionModelView view{};                         // device_model's
   std::string device_name;
   std::size_t memory_cap = 0;
   std::mutex mutex;     // one call on the device at a time: the buffers below are shared
@@ -37,21 +39,8 @@ struct GpuBatchChecker::Impl {
   std::mutex stats_mutex;
   GpuCheckStats last_stats;  // of the last call to finish, under `stats_mutex`
 
-  DeviceBuffer<LinkKinematics> links;
-  DeviceBuffer<BodyRange> link_bodies;
-  DeviceBuffer<LinkSphere> link_spheres;
-  DeviceBuffer<BvhNode> nodes;
-  DeviceBuffer<BvhTriangle> triangles;
-  DeviceBuffer<std::int32_t> pair_a, pair_b;
-  DeviceBuffer<BodySolids> link_solids;
-  DeviceBuffer<Component> components;
-  DeviceBuffer<ComponentNode> component_tree;
-  DeviceBuffer<BvhNode> solid_nodes;
-  DeviceBuffer<BvhTriangle> solid_triangles;
-
   DeviceBuffer<float> configurations;
   DeviceBuffer<float> clearances;
-  DeviceBuffer<std::int32_t> pair_ancestor;
   DeviceBuffer<std::uint8_t> verdicts;
   DeviceBuffer<traversals::DeviceTestCounts> counts;
   traversals::PacketTraversal packet;
@@ -77,32 +66,8 @@ struct GpuBatchChecker::Impl {
     check_cuda(cudaMemGetInfo(&free_bytes, &total_bytes), "cudaMemGetInfo");
     memory_cap = options.memory_cap_bytes ? options.memory_cap_bytes : free_bytes / 2;
 
-    links.upload(host.links);
-    link_bodies.upload(host.link_bodies);
-    link_spheres.upload(host.link_spheres);
-    nodes.upload(host.nodes);
-    triangles.upload(host.triangles);
-    pair_a.upload(host.pair_a);
-    pair_b.upload(host.pair_b);
-    pair_ancestor.upload(host.pair_ancestor);
-    link_solids.upload(host.link_solids);
-    components.upload(host.solids.components);
-    component_tree.upload(host.solids.tree);
-    solid_nodes.upload(host.solids.nodes);
-    solid_triangles.upload(host.solids.triangles);
+    view = device_model.emplace(host).view();
     counts.reserve(1);
-    view = host.view();
-    view.links = links.get();
-    view.link_bodies = link_bodies.get();
-    view.link_spheres = link_spheres.get();
-    view.nodes = nodes.get();
-    view.triangles = triangles.get();
-    view.pair_a = pair_a.get();
-    view.pair_b = pair_b.get();
-    view.pair_ancestor = pair_ancestor.get();
-    view.link_solids = link_solids.get();
-    view.solids = {components.get(), component_tree.get(), solid_nodes.get(),
-                   solid_triangles.get()};
     balanced.emplace(host, properties);
     pinned_configurations.reserve(kPinnedQueries * view.width);
     pinned_clearances.reserve(kPinnedQueries * std::max(1, view.link_count));

@@ -64,7 +64,7 @@ std::vector<std::string> message_lines(const std::string& err) {
   std::istringstream in(err);
   for (std::string line; std::getline(in, line);) {
     if (line.rfind("usage: gplan", 0) == 0) break;
-    if (line.rfind("gplan:", 0) == 0) lines.push_back(line);
+    if (line.rfind("gplan:", 0) == 0 || line.rfind("gplan-bench:", 0) == 0) lines.push_back(line);
   }
   return lines;
 }

@@ -17,6 +17,7 @@
 #include "command_line.h"
 #include "gplan_commands.h"
 #include "gplanner/collision_gpu/bvh.h"
+#include "gplanner/planner/output/roadmap_file.h"
 #include "gplanner/planner/planning/roadmap.h"
 #include "gplanner/planner/scene/input_error.h"
 #include "gplanner/planner/scene/mesh_loader.h"

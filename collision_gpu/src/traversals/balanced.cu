@@ -66,9 +66,7 @@ __global__ void balanced_roots_kernel(CollisionModelView m, const float* d_q, in
 // ones the GPU is full either way, and a query's jobs side by side (rather than
 // interleaved with other queries' as the thread-per-query kernel leaves them) made the
 // first rounds' lanes work on fewer queries at once and did up to 37 % more BV tests
-// (measured on the H100: the humanoid at 100,000 queries 10.5 ms with a thread per
-// query against 12.6 ms; at 3,000 and 10,000 queries a warp per query was faster or
-// tied on the humanoid and both PR2 scenes).
+// (measured: benchmarks/history/tuning_notes.md, "kWarpRootsUpTo").
 constexpr int kRootWarps = 4;  // warps (queries) per block
 constexpr std::size_t kWarpRootsUpTo = 16384;
 
@@ -240,17 +238,13 @@ __global__ void __launch_bounds__(32 * kPairWarps)
 // its own search early.
 constexpr int kTaskSteps = 32;
 // Threads per block of the task kernel, with kStackEntries stack entries each in shared
-// memory (how many blocks an SM holds is set by the carve-out). Measured on the H100 at
-// 50,000 to 100,000 queries against 256 threads with stacks in local memory: 4 to 17 %
-// faster on every scene; 16-step tasks did more BV tests and were slower than either.
+// memory (how many blocks an SM holds is set by the carve-out): the fastest measured
+// (benchmarks/history/tuning_notes.md, "kTaskThreads").
 constexpr int kTaskThreads = 128;
 // A task whose stack fills hands it back before its steps are used up. 24 entries
 // (25 KB a block) let six blocks share an SM's 164 KB of shared memory where the 33 that
-// 32 steps can reach let four; few stacks grow that deep. Measured on the H100 in one run,
-// two passes, against 33 entries: the humanoid 11 to 14 % faster, pr2_base_arm 10 to
-// 11 %, pr2_reach 4 to 6 %, the large piano 3 to 4 % slower, the rest within 3 %; 16
-// entries handed back so often that the traversals did 8 to 87 % more BV tests and were
-// slower everywhere.
+// 32 steps can reach let four; few stacks grow that deep (measured:
+// benchmarks/history/tuning_notes.md, "kStackEntries").
 constexpr int kStackEntries = 24;
 // Once a round has fewer tasks than kTailTasks the GPU has room to spare, and tasks run
 // kTailSteps: the remaining hard queries spread over more threads sooner.
@@ -258,8 +252,7 @@ constexpr unsigned kTailTasks = 65536;
 constexpr unsigned kTailSteps = 8;
 // After two rounds, a queue of at most kFinishTasks tasks is finished by one launch of
 // the small-batch kernel, a warp per task, instead of the rounds of a few tasks each
-// that remained (measured on an H200 against no finish, the same run: 50,000 to 100,000
-// queries 0 to 7 % faster on every scene, 300 to 4,000 queries 12 to 34 %).
+// that remained (measured: benchmarks/history/tuning_notes.md, "kFinishTasks").
 constexpr unsigned kFinishTasks = 4096;
 
 // Tasks fetched lane by lane: each lane runs up to kTaskSteps BV-pair tests depth-first
@@ -283,8 +276,8 @@ __global__ void __launch_bounds__(kTaskThreads, 6)
   // Each step pops one pair and pushes at most two; a stack that reaches kStackEntries
   // is handed back. The stacks live in shared memory, entry k of all threads side by
   // side, so that a lane always meets the same bank whatever its depth: in local memory
-  // they missed the L1 and stalled the warps on L2 (Nsight Compute on the H100: 19
-  // cycles of long-scoreboard stall an instruction in the big rounds).
+  // they missed the L1 and stalled the warps on L2 (benchmarks/history/tuning_notes.md,
+  // "Task stacks in shared memory").
   __shared__ int2 s_stacks[kStackEntries][kTaskThreads];
   int2* stack = &s_stacks[0][threadIdx.x];
   int top = 0, job_index = 0, query = 0;
@@ -485,11 +478,8 @@ BalancedTraversal::BalancedTraversal(const FlatCollisionModel& host,
   int blocks_per_sm = 0;
   // The shared-memory share of the SM's 256 KB of L1 and shared memory that the task
   // kernel asks for, in percent of the largest (the driver rounds it to a size the SM
-  // has): measured on the H100, with 33-entry stacks, at 100 (28 KB of L1 left for the
-  // nodes), 80, 60 and 40: 60 and 80 were fastest, 60 on more scenes; 100 and 40 were
-  // 11 to 51 % slower than 60. With 24-entry stacks, 60 (164 KB) holds six blocks; 50
-  // (five blocks, more L1) was 4 to 6 % faster on the two detailed pianos and up to 7 %
-  // slower on the humanoid.
+  // has): 60, the fastest measured (benchmarks/history/tuning_notes.md, "Shared-memory
+  // carve-out"); with 24-entry stacks it holds six blocks.
   check_cuda(cudaFuncSetAttribute(balanced_task_kernel,
                                   cudaFuncAttributePreferredSharedMemoryCarveout, 60),
              "carve-out");

@@ -38,10 +38,8 @@ constexpr int kTracedRounds = 32;
 // The traversal's counters and the state of its task queue, on the device, so that
 // rounds follow one another without the host. Counters that many threads add to at once
 // each sit on a cache line of their own: on one line their atomics queued behind each
-// other at the same L2 slice (Nsight Compute on the H100: the waits for the fetch, leaf
-// and hand-back atomics were 23 % of the task kernel's stall samples on the piano; apart,
-// balanced was 4 to 8 % faster on the humanoid, piano_detailed and the PR2 scenes, the
-// rest within the runs' spread).
+// other at the same L2 slice (measured: benchmarks/history/tuning_notes.md,
+// "BalancedState's cache lines").
 struct alignas(128) BalancedState {
   unsigned int jobs;  // jobs emitted
   unsigned int jobs_overflow;

@@ -37,9 +37,8 @@ CertifiedMotions::CertifiedMotions(const Scene& scene, CollisionChecker* checker
   step_ = options.step;
   if (!(step_ > 0)) {
     // Larger steps make fewer segments but larger clearances, and the cost of a check
-    // grows fast with its clearance (measured on the cpu backend, lazy PRM with certified
-    // edges: the humanoid 6.1 s at 1 % of its size, 4.3 s at 2 %, 6.4 s at 5 %, 34 s
-    // and no path at 1 % of its longest motion, 27 % of its size).
+    // grows fast with its clearance (measured: benchmarks/history/tuning_notes.md,
+    // "Certified motions' step").
     step_ = 0.01 * bound_.longest_displacement();
     const double robot_size = tolerance_band(scene).robot_size;
     if (robot_size > 0) step_ = std::min(step_, 0.02 * robot_size);

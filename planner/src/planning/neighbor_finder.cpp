@@ -103,12 +103,8 @@ class BruteForceNeighborFinder : public NeighborFinder {
   ConfigurationMetric metric_;
 };
 
-// Degrees of freedom beyond which the CPU k-NN is brute force rather than GNAT. Measured
-// on a 2-core machine (a roadmap doubling from 2,000 to 32,000 uniform samples, 16,000
-// for the helicopter and humanoid, k = 15 or 30; benchmarks/history/issue4_planning.md): with 6 (piano,
-// helicopter) GNAT took a third of brute force's time; with 10
-// (pr2_base_arm), 15 (pr2_reach) and 38 (humanoid) brute force took 0.55, 0.34 and
-// 0.32 of GNAT's.
+// Degrees of freedom beyond which the CPU k-NN is brute force rather than GNAT, where
+// GNAT's pruning fails (measured: benchmarks/history/tuning_notes.md, "CPU k-NN").
 constexpr int kBruteForceAboveDof = 6;
 
 int degrees_of_freedom(const ConfigurationMetric& metric) {

@@ -9,6 +9,7 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "gplanner/planner/output/roadmap_file.h"
 #include "gplanner/planner/planning/roadmap.h"
 #include "gplanner/planner/scene/scene.h"
 #include "test_support.h"

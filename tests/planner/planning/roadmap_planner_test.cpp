@@ -9,6 +9,7 @@
 #include <random>
 
 #include "gplanner/planner/checkers/cpu_checker.h"
+#include "gplanner/planner/output/roadmap_file.h"
 #include "gplanner/planner/planning/scene_metric.h"
 #include "gplanner/planner/scene/scene.h"
 #include "planner/scene_test_support.h"

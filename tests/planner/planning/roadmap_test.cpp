@@ -1,6 +1,7 @@
 // Roadmaps: edges without duplicates, and files that come back whole for their own
 // scene and are refused, with a clear reason, for another scene or when damaged.
 
+#include "gplanner/planner/output/roadmap_file.h"
 #include "gplanner/planner/planning/roadmap.h"
 
 #include <gtest/gtest.h>

@@ -168,11 +168,9 @@ GP_HD bool nearer_second_child(const BvhNode& n, V3f c) {
 // split_node_pair in depth-first order: the child on the same side of the split node's
 // split plane as the other node's centre comes first, being the likelier to hold a
 // collision, so that a query stops sooner. The children themselves are not loaded: on
-// the GPU that load was a second dependent memory access in every step (measured on the
-// H100 against ordering by the distance to the children's centres: balanced up to 10 %
-// faster, the humanoid within 2 %, basic on the piano 12 % faster; the same verdicts, BV
-// tests within 5 % for balanced). X_BA is the inverse of X_AB, computed once per body
-// pair by the caller.
+// the GPU that load was a second dependent memory access in every step (measured:
+// benchmarks/history/tuning_notes.md, "split_pair's order"). X_BA is the inverse of X_AB,
+// computed once per body pair by the caller.
 GP_HD void split_pair(const Xf& X_AB, const Xf& X_BA, int ia, int ib, const BvhNode& na,
                       const BvhNode& nb, NodePair* first, NodePair* second) {
   const bool swap =

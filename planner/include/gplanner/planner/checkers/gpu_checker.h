@@ -52,9 +52,8 @@ class GpuChecker : public CollisionChecker {
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override;
   void check_clearances(const float* configurations, std::size_t n, const float* clearances,
                         std::uint8_t* verdicts) override;
-  // Calls beyond the host's crossover: measured on an H100 with the balanced traversal
-  // (benchmarks/history/issue4_planning.md), a call of 100 configurations took 0.4 to 0.7 ms,
-  // 10,000 took 0.9 to 2.0 ms.
+  // Calls beyond the host's crossover cost about the same up to thousands of
+  // configurations (benchmarks/history/tuning_notes.md, "GPU call cost").
   std::size_t configurations_per_call_cost() const override { return 8192; }
   // Calls the host answers: no GPU call's fixed cost.
   std::size_t cheap_calls_up_to() const override { return routing_.host_threads_up_to; }

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "gplanner/planner/planning/plan_result.h"
+#include "gplanner/planner/planning/plan_result.h"  // PlanResult
 
 namespace gplanner {
 

@@ -18,7 +18,8 @@ extern char** environ;
 
 namespace gplan {
 
-// benchmarks/harness/plot_bench.py, generated into the build folder by apps/CMakeLists.txt.
+// benchmarks/harness/plot_bench.py (with plot_common.py), generated into the build folder
+// by benchmarks/CMakeLists.txt.
 extern const unsigned char kPlotBenchScript[];
 extern const std::size_t kPlotBenchScriptSize;
 // benchmarks/harness/plot_error_time.py, the same way.

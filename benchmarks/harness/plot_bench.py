@@ -11,7 +11,7 @@ with matplotlib, as PNG and SVG:
     batch time per checker per scene as grouped bars on a logarithmic axis.
 
 A CSV holding several experiments gets a folder OUT_DIR/<experiment>/ for each. The
-output is deterministic: drawn twice, the files are identical. gplan runs this script
+output is deterministic: drawn twice, the files are identical. gplan-bench runs this script
 embedded in its binary (benchmarks/harness/bench_plots.cpp) as `python3 - CSV OUT_DIR`.
 
 usage: plot_bench.py CSV OUT_DIR
@@ -24,15 +24,12 @@ import sys
 if sys.path and sys.path[0] == "":
     del sys.path[0]
 
-import csv  # noqa: E402  (after sys.path is set)
-import math  # noqa: E402
+import math  # noqa: E402  (after sys.path is set)
 import os  # noqa: E402
 import statistics  # noqa: E402
-import tempfile  # noqa: E402
-import matplotlib
 
-matplotlib.use("Agg")
-from matplotlib import pyplot  # noqa: E402  (after the backend is chosen)
+from plot_common import (BadCsv, check_file_names, field, file_stem, main, parse_count,  # noqa: E402
+                         parse_time, pyplot, read_csv, require, save)
 from matplotlib import transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
@@ -57,10 +54,6 @@ LEGEND_HEIGHT_IN = 0.6  # the planning figures' legend, below the panels
 TITLE_HEIGHT_IN = 0.35  # inches above the panels for the figure's title
 
 
-class BadCsv(Exception):
-    """The CSV is not one gplan bench wrote; the message names the file and line."""
-
-
 class Run:
     """The fields of one CSV record the plots use."""
 
@@ -74,66 +67,22 @@ class Run:
         self.work = work  # None when not given
 
 
-def parse_time(text):
-    if text == "":
-        return None
-    try:
-        value = float(text)
-    except ValueError:
-        raise BadCsv("'%s' is no number" % text)
-    if not math.isfinite(value) or value < 0:
-        raise BadCsv("'%s' is no time in seconds (finite, not negative)" % text)
-    return value
-
-
-def parse_count(text):
-    if text == "":
-        return None
-    if not text.isdigit() or len(text) > 18:
-        raise BadCsv("'%s' is no count" % text)
-    return int(text)
+def run_of(row):
+    """One CSV record as a Run; BadCsv on anything bench_record.cpp would not write."""
+    def solved(text):
+        if text not in ("0", "1"):
+            raise BadCsv("'%s' is not 0 or 1" % text)
+        return text == "1"
+    run = Run(row["experiment"], row["scene"], row["planner"], row["checker"],
+              field(row, "solved", solved), field(row, "time_s", parse_time),
+              field(row, "work", parse_count))
+    require(row, ("experiment", "scene", "planner", "checker"))
+    return run
 
 
 def read_runs(path):
     """The CSV's records as Runs; BadCsv on anything bench_record.cpp would not write."""
-    try:
-        with open(path, newline="", encoding="utf-8", errors="replace") as file:
-            reader = csv.reader(file, strict=True)
-            runs = []
-            try:
-                header = next(reader, None)
-                if header not in (COLUMNS, COLUMNS_BEFORE_CHECK_TIME):
-                    raise BadCsv("%s:1: not a gplan bench CSV (the header differs from "
-                                 "gplan's: %s)" % (path, ",".join(COLUMNS)))
-                columns = header
-                for fields in reader:
-                    line = reader.line_num
-                    if fields == []:
-                        continue
-                    if len(fields) != len(columns):
-                        raise BadCsv("%s:%d: %d fields, not %d"
-                                     % (path, line, len(fields), len(columns)))
-                    row = dict(zip(columns, fields))
-                    column = ""
-                    try:
-                        column = "solved"
-                        if row["solved"] not in ("0", "1"):
-                            raise BadCsv("'%s' is not 0 or 1" % row["solved"])
-                        column = "time_s"
-                        time_s = parse_time(row["time_s"])
-                        column = "work"
-                        work = parse_count(row["work"])
-                    except BadCsv as error:
-                        raise BadCsv("%s:%d: column %s: %s" % (path, line, column, error))
-                    for key in ("experiment", "scene", "planner", "checker"):
-                        if row[key] == "":
-                            raise BadCsv("%s:%d: column %s is empty" % (path, line, key))
-                    runs.append(Run(row["experiment"], row["scene"], row["planner"],
-                                    row["checker"], row["solved"] == "1", time_s, work))
-            except csv.Error as error:
-                raise BadCsv("%s:%d: %s" % (path, reader.line_num, error))
-    except OSError as error:
-        raise BadCsv("%s: cannot be read (%s)" % (path, error.strerror or error))
+    runs = read_csv(path, (COLUMNS, COLUMNS_BEFORE_CHECK_TIME), "a gplan bench CSV", run_of)
     if not runs:
         raise BadCsv("%s: holds no runs, nothing to plot" % path)
     return runs
@@ -163,49 +112,6 @@ def time_text(seconds):
             value = seconds / scale
             digits = 0 if value >= 100 else 1 if value >= 10 else 2
             return "%.*f %s" % (digits, value, unit)
-
-
-def file_stem(name):
-    """`name` as a file name: characters other than letters, digits, '.', '-' and '_' as
-    '_', never a hidden or relative name."""
-    stem = "".join(c if c.isascii() and (c.isalnum() or c in "._-") else "_" for c in name)
-    return "_" + stem if stem.startswith(".") or stem == "" else stem
-
-
-def check_file_names(figures):
-    """BadCsv when two of `figures` ((what, name) pairs: scenes, tables, the overview,
-    experiments' folders) would be written to the same file, before anything is drawn."""
-    taken = {}
-    for what, name in figures:
-        stem = file_stem(name)
-        if stem in taken:
-            raise BadCsv("%s '%s' and %s '%s' would both be written to %s; rename one"
-                         % (taken[stem] + (what, name, stem)))
-        taken[stem] = (what, name)
-
-
-def save(figure, out_dir, stem):
-    """Writes figure as out_dir/stem.png and .svg, each whole or not at all (a temporary
-    file renamed over it; a symbolic link is written through)."""
-    for extension, metadata in (("png", {"Software": None}),
-                                ("svg", {"Date": None, "Creator": None})):
-        path = os.path.realpath(os.path.join(out_dir, stem + "." + extension))
-        handle, temporary = tempfile.mkstemp(prefix="." + stem + ".", suffix=".part",
-                                             dir=os.path.dirname(path))
-        try:
-            with os.fdopen(handle, "wb") as file:
-                figure.savefig(file, format=extension, metadata=metadata)
-            if os.path.exists(path):
-                os.chmod(temporary, os.stat(path).st_mode & 0o7777)
-            else:
-                umask = os.umask(0)
-                os.umask(umask)
-                os.chmod(temporary, 0o666 & ~umask)
-            os.replace(temporary, path)
-        except BaseException:
-            os.unlink(temporary)
-            raise
-    pyplot.close(figure)
 
 
 # Planning runs ------------------------------------------------------------------------
@@ -402,24 +308,5 @@ def draw(runs, out_dir):
                              folder)
 
 
-def main(argv):
-    if len(argv) != 3:
-        print("usage: plot_bench.py CSV OUT_DIR", file=sys.stderr)
-        return 2
-    matplotlib.rcdefaults()  # the same figures whatever the user's matplotlibrc says
-    matplotlib.rcParams["svg.hashsalt"] = "gplan bench"
-    matplotlib.rcParams["path.simplify"] = True
-    try:
-        draw(read_runs(argv[1]), argv[2])
-    except BadCsv as error:
-        print("plot_bench.py: %s" % error, file=sys.stderr)
-        return 2
-    except OSError as error:
-        print("plot_bench.py: %s: cannot be written (%s)"
-              % (error.filename or argv[2], error.strerror or error), file=sys.stderr)
-        return 1
-    return 0
-
-
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(main(sys.argv, "plot_bench.py", "gplan bench", read_runs, draw))

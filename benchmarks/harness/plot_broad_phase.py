@@ -5,7 +5,7 @@ and .svg, the median frame time (transfers included) against the sphere count, l
 one curve per method, the fastest method at each count marked and named under the axis
 (the crossovers). Methods that did not run at a count (above their max_count, or no GPU)
 have no point there. The output is deterministic: drawn twice, the files are identical.
-gplan runs this script embedded in its binary (benchmarks/harness/bench_plots.cpp) as
+gplan-bench runs this script embedded in its binary (benchmarks/harness/bench_plots.cpp) as
 `python3 - CSV OUT_DIR`.
 
 usage: plot_broad_phase.py CSV OUT_DIR
@@ -18,14 +18,10 @@ import sys
 if sys.path and sys.path[0] == "":
     del sys.path[0]
 
-import csv  # noqa: E402  (after sys.path is set)
-import math  # noqa: E402
+import math  # noqa: E402  (after sys.path is set)
 import os  # noqa: E402
-import tempfile  # noqa: E402
-import matplotlib  # noqa: E402
 
-matplotlib.use("Agg")
-from matplotlib import pyplot  # noqa: E402  (after the backend is chosen)
+from plot_common import BadCsv, main, pyplot, read_csv, require, save  # noqa: E402
 
 # The columns of write_broad_phase_csv_header() in benchmarks/harness/broad_phase_record.cpp.
 COLUMNS = ["count", "method", "frames", "pairs_mean", "mean_ms", "median_ms", "min_ms",
@@ -38,66 +34,26 @@ MARKERS = {"cpu-all-pairs": "o", "cpu-sort-sweep": "s", "gpu-all-pairs": "^",
 SEED_COUNTS = (64, 320)
 
 
-class BadCsv(Exception):
-    """The CSV is not one gplan wrote; the message names the file and line."""
+def point_of(row):
+    """One CSV record as a point (a dict, the count, frames and median time parsed)."""
+    require(row, ("method",))
+    try:
+        row["count"] = int(row["count"])
+        row["frames"] = int(row["frames"])
+        if row["frames"] > 0:
+            row["median_ms"] = float(row["median_ms"])
+            if not math.isfinite(row["median_ms"]) or row["median_ms"] < 0:
+                raise ValueError(row["median_ms"])
+    except ValueError:
+        raise BadCsv("a count or time that is no number")
+    return row
 
 
 def read_points(path):
-    try:
-        with open(path, newline="", encoding="utf-8", errors="replace") as file:
-            reader = csv.reader(file, strict=True)
-            points = []
-            try:
-                if next(reader, None) != COLUMNS:
-                    raise BadCsv("%s:1: not a broad-phase CSV (the header differs from "
-                                 "gplan's: %s)" % (path, ",".join(COLUMNS)))
-                for fields in reader:
-                    if fields == []:
-                        continue
-                    line = reader.line_num
-                    if len(fields) != len(COLUMNS):
-                        raise BadCsv("%s:%d: %d fields, not %d"
-                                     % (path, line, len(fields), len(COLUMNS)))
-                    row = dict(zip(COLUMNS, fields))
-                    if row["method"] == "":
-                        raise BadCsv("%s:%d: column method is empty" % (path, line))
-                    try:
-                        row["count"] = int(row["count"])
-                        row["frames"] = int(row["frames"])
-                        if row["frames"] > 0:
-                            row["median_ms"] = float(row["median_ms"])
-                            if not math.isfinite(row["median_ms"]) or row["median_ms"] < 0:
-                                raise ValueError(row["median_ms"])
-                    except ValueError:
-                        raise BadCsv("%s:%d: a count or time that is no number" % (path, line))
-                    points.append(row)
-            except csv.Error as error:
-                raise BadCsv("%s:%d: %s" % (path, reader.line_num, error))
-    except OSError as error:
-        raise BadCsv("%s: cannot be read (%s)" % (path, error.strerror or error))
+    points = read_csv(path, (COLUMNS,), "a broad-phase CSV", point_of)
     if not any(p["frames"] > 0 for p in points):
         raise BadCsv("%s: no method ran, nothing to plot" % path)
     return points
-
-
-def save(figure, out_dir, stem):
-    """Writes figure as out_dir/stem.png and .svg, each whole or not at all."""
-    for extension, metadata in (("png", {"Software": None}),
-                                ("svg", {"Date": None, "Creator": None})):
-        path = os.path.realpath(os.path.join(out_dir, stem + "." + extension))
-        handle, temporary = tempfile.mkstemp(prefix="." + stem + ".", suffix=".part",
-                                             dir=os.path.dirname(path))
-        try:
-            with os.fdopen(handle, "wb") as file:
-                figure.savefig(file, format=extension, metadata=metadata)
-            umask = os.umask(0)
-            os.umask(umask)
-            os.chmod(temporary, 0o666 & ~umask)
-            os.replace(temporary, path)
-        except BaseException:
-            os.unlink(temporary)
-            raise
-    pyplot.close(figure)
 
 
 def fastest(points):
@@ -146,24 +102,5 @@ def draw(points, out_dir):
     save(figure, out_dir, "broad_phase")
 
 
-def main(argv):
-    if len(argv) != 3:
-        print("usage: plot_broad_phase.py CSV OUT_DIR", file=sys.stderr)
-        return 2
-    matplotlib.rcdefaults()  # the same figures whatever the user's matplotlibrc says
-    matplotlib.rcParams["svg.hashsalt"] = "gplan bench broad-phase"
-    matplotlib.rcParams["path.simplify"] = True
-    try:
-        draw(read_points(argv[1]), argv[2])
-    except BadCsv as error:
-        print("plot_broad_phase.py: %s" % error, file=sys.stderr)
-        return 2
-    except OSError as error:
-        print("plot_broad_phase.py: %s: cannot be written (%s)"
-              % (error.filename or argv[2], error.strerror or error), file=sys.stderr)
-        return 1
-    return 0
-
-
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(main(sys.argv, "plot_broad_phase.py", "gplan bench broad-phase", read_points, draw))

@@ -15,7 +15,7 @@ panels:
 
 Every point is labelled with its knob value. Errors of 0 are drawn on the axis's
 linear part (a symmetric-log axis). The output is deterministic: drawn twice, the files
-are identical. gplan runs this script embedded in its binary (benchmarks/harness/bench_plots.cpp)
+are identical. gplan-bench runs this script embedded in its binary (benchmarks/harness/bench_plots.cpp)
 as `python3 - CSV OUT_DIR`.
 
 usage: plot_error_time.py CSV OUT_DIR
@@ -28,14 +28,10 @@ import sys
 if sys.path and sys.path[0] == "":
     del sys.path[0]
 
-import csv  # noqa: E402  (after sys.path is set)
-import math  # noqa: E402
-import os  # noqa: E402
-import tempfile  # noqa: E402
-import matplotlib  # noqa: E402
+import os  # noqa: E402  (after sys.path is set)
 
-matplotlib.use("Agg")
-from matplotlib import pyplot  # noqa: E402  (after the backend is chosen)
+from plot_common import (BadCsv, field, file_stem, main, parse_count, parse_time,  # noqa: E402
+                         pyplot, read_csv, require, save)
 
 # The columns of write_error_time_csv_header() in benchmarks/harness/error_time_record.cpp.
 COLUMNS = ["scene", "knob", "value", "checker", "time_s", "missed", "extra", "undecided",
@@ -52,55 +48,18 @@ MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">", "*"]
 SHORTEST_TIME_S = 1e-6  # a log axis has no 0
 
 
-class BadCsv(Exception):
-    """The CSV is not one gplan wrote; the message names the file and line."""
-
-
-def count(text, allow_empty):
-    if text == "" and allow_empty:
-        return None
-    if not text.isdigit() or len(text) > 18:
-        raise BadCsv("'%s' is no count" % text)
-    return int(text)
+def point_of(row):
+    """One CSV record as a point (a dict, numbers parsed)."""
+    row["time_s"] = field(row, "time_s", lambda text: parse_time(text, allow_empty=False))
+    for column in COLUMNS[5:]:
+        row[column] = field(row, column,
+                            lambda text: parse_count(text, allow_empty=column != "total"))
+    require(row, ("scene", "knob", "value", "checker"))
+    return row
 
 
 def read_points(path):
-    try:
-        with open(path, newline="", encoding="utf-8", errors="replace") as file:
-            reader = csv.reader(file, strict=True)
-            points = []
-            try:
-                if next(reader, None) != COLUMNS:
-                    raise BadCsv("%s:1: not an error-time CSV (the header differs from "
-                                 "gplan's: %s)" % (path, ",".join(COLUMNS)))
-                for fields in reader:
-                    if fields == []:
-                        continue
-                    line = reader.line_num
-                    if len(fields) != len(COLUMNS):
-                        raise BadCsv("%s:%d: %d fields, not %d"
-                                     % (path, line, len(fields), len(COLUMNS)))
-                    row = dict(zip(COLUMNS, fields))
-                    column = "time_s"
-                    try:
-                        row["time_s"] = float(row["time_s"])
-                        if not math.isfinite(row["time_s"]) or row["time_s"] < 0:
-                            raise BadCsv("'%s' is no time in seconds" % fields[4])
-                        for column in COLUMNS[5:]:
-                            row[column] = count(row[column], column != "total")
-                    except ValueError:
-                        raise BadCsv("%s:%d: column %s: '%s' is no number"
-                                     % (path, line, column, row[column]))
-                    except BadCsv as error:
-                        raise BadCsv("%s:%d: column %s: %s" % (path, line, column, error))
-                    for key in ("scene", "knob", "value", "checker"):
-                        if row[key] == "":
-                            raise BadCsv("%s:%d: column %s is empty" % (path, line, key))
-                    points.append(row)
-            except csv.Error as error:
-                raise BadCsv("%s:%d: %s" % (path, reader.line_num, error))
-    except OSError as error:
-        raise BadCsv("%s: cannot be read (%s)" % (path, error.strerror or error))
+    points = read_csv(path, (COLUMNS,), "an error-time CSV", point_of)
     if not points:
         raise BadCsv("%s: holds no points, nothing to plot" % path)
     return points
@@ -114,31 +73,6 @@ def error_percent(point):
     if decided <= 0 or point["missed"] is None:
         return None
     return 100.0 * (point["missed"] + point["extra"]) / decided
-
-
-def file_stem(name):
-    stem = "".join(c if c.isascii() and (c.isalnum() or c in "._-") else "_" for c in name)
-    return "_" + stem if stem.startswith(".") or stem == "" else stem
-
-
-def save(figure, out_dir, stem):
-    """Writes figure as out_dir/stem.png and .svg, each whole or not at all."""
-    for extension, metadata in (("png", {"Software": None}),
-                                ("svg", {"Date": None, "Creator": None})):
-        path = os.path.realpath(os.path.join(out_dir, stem + "." + extension))
-        handle, temporary = tempfile.mkstemp(prefix="." + stem + ".", suffix=".part",
-                                             dir=os.path.dirname(path))
-        try:
-            with os.fdopen(handle, "wb") as file:
-                figure.savefig(file, format=extension, metadata=metadata)
-            umask = os.umask(0)
-            os.umask(umask)
-            os.chmod(temporary, 0o666 & ~umask)
-            os.replace(temporary, path)
-        except BaseException:
-            os.unlink(temporary)
-            raise
-    pyplot.close(figure)
 
 
 def draw_panel(axes, title, knobs, ylabel, points):
@@ -204,24 +138,5 @@ def draw(points, out_dir):
         save(figure, out_dir, file_stem(scene))
 
 
-def main(argv):
-    if len(argv) != 3:
-        print("usage: plot_error_time.py CSV OUT_DIR", file=sys.stderr)
-        return 2
-    matplotlib.rcdefaults()  # the same figures whatever the user's matplotlibrc says
-    matplotlib.rcParams["svg.hashsalt"] = "gplan bench error-time"
-    matplotlib.rcParams["path.simplify"] = True
-    try:
-        draw(read_points(argv[1]), argv[2])
-    except BadCsv as error:
-        print("plot_error_time.py: %s" % error, file=sys.stderr)
-        return 2
-    except OSError as error:
-        print("plot_error_time.py: %s: cannot be written (%s)"
-              % (error.filename or argv[2], error.strerror or error), file=sys.stderr)
-        return 1
-    return 0
-
-
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(main(sys.argv, "plot_error_time.py", "gplan bench error-time", read_points, draw))

@@ -1,5 +1,5 @@
 #pragma once
-// Baselines of `gplan bench` and the verdict against one.
+// Baselines of `gplan-bench` and the verdict against one.
 //
 // A baseline file (YAML, written by --save-baseline) keeps each group's summary: runs,
 // success rate, median time (with the time a run without a path took counted in) and

@@ -209,8 +209,8 @@ int run_bench(int argc, char** argv) {
       records = read_bench_csv(csv);
     } catch (const std::runtime_error& e) {
       throw gplanner::InputError({"--report", 0, ""}, std::string(e.what()) +
-                                                          "; name the folder of a gplan bench run, "
-                                                          "its results.csv as gplan wrote it");
+                                                          "; name the folder of a gplan-bench run, "
+                                                          "its results.csv as gplan-bench wrote it");
     }
     return conclude(config, records, dir, baseline, baseline_groups, save, !args.flag("no-plots"));
   }

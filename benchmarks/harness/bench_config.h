@@ -1,5 +1,5 @@
 #pragma once
-// A `gplan bench` configuration (YAML, benchmarks/config/*.yaml): what to run, how often, and
+// A `gplan-bench` configuration (YAML, benchmarks/config/*.yaml): what to run, how often, and
 // the tolerances of the verdict against a baseline. See benchmarks/README.md for the keys.
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// The files every `gplan bench` run writes into its output folder, written atomically:
+// The files every `gplan-bench` run writes into its output folder, written atomically:
 // a text file, the configuration as it was run, and a study's results.
 
 #include <string>

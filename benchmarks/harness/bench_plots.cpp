@@ -204,7 +204,7 @@ bool run_plot_script(const char* name, const unsigned char* script_bytes, std::s
   } else {
     *notice = std::string("plots not drawn: ") + name + " (run by " + python +
               ") exited with code " + std::to_string(code) +
-              (code == 2   ? " (the CSV is not one gplan bench wrote)"
+              (code == 2   ? " (the CSV is not one gplan-bench wrote)"
                : code == 1 ? " (an output could not be written)"
                            : "");
   }

@@ -1,5 +1,5 @@
 #pragma once
-// The plots of `gplan bench` (plan-time distributions per scene and planner, the query
+// The plots of `gplan-bench` (plan-time distributions per scene and planner, the query
 // tables' batch times, the error-against-time study's curves), drawn by
 // benchmarks/harness/plot_bench.py, plot_error_time.py and plot_broad_phase.py with matplotlib. The scripts
 // are embedded in the binary (apps/CMakeLists.txt generates them as sources), so that an installed

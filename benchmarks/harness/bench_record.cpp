@@ -180,7 +180,7 @@ std::vector<BenchRecord> read_bench_csv(const std::string& file) {
     }
     if (first_line == 1) {
       if (f != columns && f != columns_before_check_time())
-        throw std::runtime_error(file + ":1: not a gplan bench CSV (the header differs)");
+        throw std::runtime_error(file + ":1: not a gplan-bench CSV (the header differs)");
       with_check_time = f == columns;
       continue;
     }

@@ -1,5 +1,5 @@
 #pragma once
-// One measured run of `gplan bench`: a planning run (one planner on one scene with one
+// One measured run of `gplan-bench`: a planning run (one planner on one scene with one
 // seed) or one timed batch of the seed's query tables (collision queries or local
 // planning). Records are what the CSV holds, one per line, and what the OMPL log, the
 // summary, the plots and the baseline verdict are made from.

@@ -1,5 +1,5 @@
 #pragma once
-// Runs the groups of a `gplan bench` configuration, each in a worker process of its own.
+// Runs the groups of a `gplan-bench` configuration, each in a worker process of its own.
 //
 // A group is one scene with one planner@checker (planning) or one query table with one
 // checker (queries); its runs go one after another in its worker. Workers are forked

@@ -1,5 +1,5 @@
 #pragma once
-// The seeded configurations gplan bench's workloads are drawn from: uniform states (as
+// The seeded configurations gplan-bench's workloads are drawn from: uniform states (as
 // `gplan check --seed` draws them), and the first uniform states a checker finds free
 // (a roadmap's milestones).
 

@@ -1,5 +1,5 @@
 #pragma once
-// What a `gplan bench` run comes to, group by group: the summary table printed in the
+// What a `gplan-bench` run comes to, group by group: the summary table printed in the
 // terminal and written to summary.txt, and what a baseline keeps.
 
 #include <iosfwd>

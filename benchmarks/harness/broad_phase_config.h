@@ -1,5 +1,5 @@
 #pragma once
-// The keys of a `gplan bench` configuration of kind broad-phase (the sphere broad-phase
+// The keys of a `gplan-bench` configuration of kind broad-phase (the sphere broad-phase
 // study, benchmarks/harness/broad_phase_study.h): which methods, at which sphere counts, for how
 // many frames, and the spheres' sizes and motion. See benchmarks/README.md, "Broad phase".
 

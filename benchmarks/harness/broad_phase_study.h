@@ -1,5 +1,5 @@
 #pragma once
-// The sphere broad-phase study of `gplan bench` (kind: broad-phase): the seed's Table I
+// The sphere broad-phase study of `gplan-bench` (kind: broad-phase): the seed's Table I
 // (all pairs, sequential on the CPU against parallel on the GPU, 64 to 320 spheres,
 // average FPS and speed-up) and beyond it, the scalable methods up to a million spheres.
 //

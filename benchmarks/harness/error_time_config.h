@@ -1,5 +1,5 @@
 #pragma once
-// The keys of a `gplan bench` configuration of kind error-time (the error-against-time
+// The keys of a `gplan-bench` configuration of kind error-time (the error-against-time
 // study, benchmarks/harness/error_time_study.h): what the study sweeps and how large its ground
 // truth is. See benchmarks/README.md, "Error against time".
 

@@ -1,5 +1,5 @@
 #pragma once
-// The error-against-time study of `gplan bench` (kind: error-time): for each scene, every
+// The error-against-time study of `gplan-bench` (kind: error-time): for each scene, every
 // speed knob swept and each of its values measured for run time and for error against a
 // ground truth from FCL in double precision (benchmarks/harness/error_time_truth.h), on the
 // checkers the configuration names. See benchmarks/README.md, "Error against time".
@@ -45,7 +45,7 @@ void run_error_time_scene(const gplanner::Scene& scene, const std::string& scene
                           const std::function<void(const std::string&)>& progress,
                           const std::function<bool()>& stop);
 
-// `gplan bench` for a configuration of kind error-time, the scenes loaded and the output
+// `gplan-bench` for a configuration of kind error-time, the scenes loaded and the output
 // folder `dir` made (new or empty): runs the study on every scene with progress on
 // stderr and writes into `dir` results.csv (results.partial.csv while it runs),
 // results.md (the table), config.yaml (the configuration as read) and, where `plots`,

@@ -1,4 +1,4 @@
-// gplan-bench: the benchmark program (benchmarks/README.md); `gplan bench` runs it.
+// gplan-bench: the benchmark program (benchmarks/README.md); `gplan-bench` runs it.
 
 #include "harness/bench_command.h"
 #include "program_main.h"

@@ -1,6 +1,6 @@
 #pragma once
 // OMPL's benchmark log, as ompl::tools::Benchmark::saveResultsToStream writes it (OMPL
-// 1.5), made from `gplan bench`'s planning records: OMPL's ompl_benchmark_statistics
+// 1.5), made from `gplan-bench`'s planning records: OMPL's ompl_benchmark_statistics
 // reads it into the Planner Arena database (experiments, plannerConfigs, runs, enums).
 // One log holds one experiment (one scene); every (planner, checker) is one "planner".
 

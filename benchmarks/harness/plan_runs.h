@@ -1,5 +1,5 @@
 #pragma once
-// The planning runs of `gplan bench`: one (scene, planner@checker) group at a time.
+// The planning runs of `gplan-bench`: one (scene, planner@checker) group at a time.
 //
 // Every run is a fresh planner with its own seed (the configuration's seed + the run's
 // index): ours take it as their seed; for OMPL's, OMPL's random number generator is

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Draws the plots of a `gplan bench` run from its CSV (written by benchmarks/harness/bench_record),
+"""Draws the plots of a `gplan-bench` run from its CSV (written by benchmarks/harness/bench_record),
 with matplotlib, as PNG and SVG:
 
   planning runs: per scene OUT_DIR/<scene>.png/.svg, the plan-time distribution of every
@@ -15,7 +15,7 @@ output is deterministic: drawn twice, the files are identical. gplan-bench runs 
 embedded in its binary (benchmarks/harness/bench_plots.cpp) as `python3 - CSV OUT_DIR`.
 
 usage: plot_bench.py CSV OUT_DIR
-exit:  0 drawn, 1 an output could not be written, 2 the CSV is not a gplan bench CSV
+exit:  0 drawn, 1 an output could not be written, 2 the CSV is not a gplan-bench CSV
 """
 import sys
 
@@ -82,7 +82,7 @@ def run_of(row):
 
 def read_runs(path):
     """The CSV's records as Runs; BadCsv on anything bench_record.cpp would not write."""
-    runs = read_csv(path, (COLUMNS, COLUMNS_BEFORE_CHECK_TIME), "a gplan bench CSV", run_of)
+    runs = read_csv(path, (COLUMNS, COLUMNS_BEFORE_CHECK_TIME), "a gplan-bench CSV", run_of)
     if not runs:
         raise BadCsv("%s: holds no runs, nothing to plot" % path)
     return runs

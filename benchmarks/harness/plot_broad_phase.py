@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Draws the plot of a `gplan bench` broad-phase study from its CSV (written by
+"""Draws the plot of a `gplan-bench` broad-phase study from its CSV (written by
 benchmarks/harness/broad_phase_record), with matplotlib, as PNG and SVG: OUT_DIR/broad_phase.png
 and .svg, the median frame time (transfers included) against the sphere count, log-log,
 one curve per method, the fastest method at each count marked and named under the axis

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Draws the plots of a `gplan bench` error-against-time study from its CSV (written by
+"""Draws the plots of a `gplan-bench` error-against-time study from its CSV (written by
 benchmarks/harness/error_time_record), with matplotlib, as PNG and SVG: for each scene
 OUT_DIR/<scene>.png/.svg, error against time, one curve per knob and checker, in three
 panels:

@@ -1,5 +1,5 @@
 #pragma once
-// The seed's query tables as `gplan bench` measures them (Pan & Manocha, "Timing
+// The seed's query tables as `gplan-bench` measures them (Pan & Manocha, "Timing
 // Results" and "Applications to PR2 Model"): timed batch calls of one checker on one
 // scene, a BenchRecord per call.
 // - "collision-queries" (the seed's milestone computation): a batch of configurations

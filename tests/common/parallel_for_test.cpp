@@ -153,7 +153,7 @@ TEST(ParallelFor, CallsReuseTheSameHelperThreads) {
   EXPECT_GE(threads_seen, 1);
 }
 
-// fork() leaves the child none of the helper threads (gplan bench forks its workers):
+// fork() leaves the child none of the helper threads (gplan-bench forks its workers):
 // the child's loops still run every index once, on helpers of its own.
 TEST(ParallelFor, AForkedChildRunsLoopsOnHelpersOfItsOwn) {
   parallel_for(

@@ -2,7 +2,7 @@
 // The independent check of a returned path: FCL (double precision, the reference
 // checker) at every waypoint and along every segment at a resolution finer than the
 // planner's by `refinement` (its edge_resolution and, when set, its max_displacement
-// divided by it). Used by the tests and by `gplan bench`, which re-checks every path a
+// divided by it). Used by the tests and by `gplan-bench`, which re-checks every path a
 // planner returns.
 
 #include <string>

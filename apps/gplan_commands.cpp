@@ -2,12 +2,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "check_command.h"
 #include "command_line.h"
@@ -79,23 +81,47 @@ int run_info() {
   return 0;
 }
 
+// This process's command line as the kernel holds it (/proc/self/cmdline): where a
+// dynamic loader started the program (`ld.so [OPTIONS] PROGRAM ARGS`), the loader and its
+// options come first.
+std::vector<std::string> process_command_line() {
+  std::ifstream file("/proc/self/cmdline", std::ios::binary);
+  std::vector<std::string> words;
+  for (std::string word; std::getline(file, word, '\0');) words.push_back(word);
+  return words;
+}
+
 // `gplan bench ARGS`: runs gplan-bench ARGS from the folder gplan lies in, in gplan's
-// place (its exit code is gplan's).
+// place (its exit code is gplan's). Where a dynamic loader started gplan (a relocatable
+// bundle's `ld.so --library-path DIR gplan ...`), the same loader with the same options
+// starts gplan-bench.
 int run_bench_alias(int argc, char** argv) {
   namespace fs = std::filesystem;
   std::error_code error;
-  fs::path self = fs::read_symlink("/proc/self/exe", error);
-  // Started by a dynamic loader (ld.so PROGRAM): the program is argv[0].
-  if (error || self.filename().string().rfind("gplan", 0) != 0) self = argv[0];
-  const fs::path bench = self.parent_path() / "gplan-bench";
-  std::vector<char*> args{const_cast<char*>("gplan-bench")};
-  for (int i = 2; i < argc; ++i) args.push_back(argv[i]);
+  fs::path gplan = fs::read_symlink("/proc/self/exe", error);
+  std::vector<std::string> command;
+  if (error || gplan.filename().string().rfind("gplan", 0) != 0) {
+    gplan = argv[0];
+    const std::vector<std::string> words = process_command_line();
+    const std::size_t n = static_cast<std::size_t>(argc);
+    if (words.size() > n &&
+        std::equal(words.end() - n, words.end(), argv, [](const std::string& a, const char* b) {
+          return a == b;
+        })) {
+      command.assign(words.begin(), words.end() - n);  // the loader and its options
+    }
+  }
+  const std::string bench = (gplan.parent_path() / "gplan-bench").string();
+  command.push_back(bench);
+  for (int i = 2; i < argc; ++i) command.push_back(argv[i]);
+  std::vector<char*> args;
+  for (std::string& word : command) args.push_back(word.data());
   args.push_back(nullptr);
   std::cout.flush();
   std::cerr.flush();
-  ::execv(bench.c_str(), args.data());
+  ::execv(args[0], args.data());
   throw std::runtime_error("gplan bench runs gplan-bench, which did not start from " +
-                           bench.string() + " (" + std::strerror(errno) +
+                           bench + " (" + std::strerror(errno) +
                            "); run gplan-bench from where it is installed");
 }
 

@@ -75,7 +75,7 @@ CommandResult run_gplan(const std::string& arguments) {
 
 CommandResult run_program(const char* variable, const std::string& executable,
                           const std::string& arguments) {
-  const char* custom = std::getenv(variable);
+  const char* custom = variable ? std::getenv(variable) : nullptr;
   const std::string program = custom && *custom ? std::string(custom) : "'" + executable + "'";
   const std::string command = program + " " + arguments + " 2>&1";
   CommandResult result;

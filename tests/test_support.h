@@ -50,7 +50,8 @@ inline std::string shell_quoted(const std::string& text) { return "'" + text + "
 CommandResult run_gplan(const std::string& arguments);
 
 // Runs `executable` with `arguments` (shell syntax), standard output and error together;
-// where the environment variable `variable` is set, that command line instead.
+// where the environment variable `variable` (if not null) is set, that command line
+// instead.
 CommandResult run_program(const char* variable, const std::string& executable,
                           const std::string& arguments);
 

@@ -183,6 +183,29 @@ TEST(GplanBench, GplanBenchRunsTheBenchmarkProgram) {
   EXPECT_EQ(help.output.rfind("usage: gplan-bench CONFIG", 0), 0u) << help.output;
 }
 
+// gplan started by the dynamic loader (as a relocatable bundle starts it): gplan-bench is
+// started the same way. A gplan without gplan-bench beside it says so (exit 1).
+TEST(GplanBench, TheAliasFollowsTheLoaderAndSaysWhenGplanBenchIsMissing) {
+  const std::string loader = "/lib64/ld-linux-x86-64.so.2";
+  if (fs::exists(loader)) {
+    const CommandResult help = gplanner::testing::run_program(
+        nullptr, loader, shell_quoted(GPLAN_EXECUTABLE) + " bench --help");
+    EXPECT_EQ(help.exit_code, 0) << help.output;
+    EXPECT_EQ(help.output.rfind("usage: gplan-bench CONFIG", 0), 0u) << help.output;
+  }
+  const ScratchFolder folder;
+  const std::string alone = folder.path() + "/gplan";
+  fs::copy_file(GPLAN_EXECUTABLE, alone);
+  fs::permissions(alone, fs::perms::owner_all);
+  const CommandResult missing =
+      gplanner::testing::run_program(nullptr, alone, "bench x.yaml");
+  EXPECT_EQ(missing.exit_code, 1) << missing.output;
+  EXPECT_NE(missing.output.find("gplan: error: gplan bench runs gplan-bench, which did not start "
+                                "from " + folder.path() + "/gplan-bench"),
+            std::string::npos)
+      << missing.output;
+}
+
 // Processes whose command line has `word` in it (zombies excepted).
 int processes_running(const std::string& word) {
   int count = 0;

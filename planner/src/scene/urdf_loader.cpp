@@ -458,27 +458,33 @@ std::map<std::string, LinkElements> check_collisions(const tinyxml2::XMLDocument
                        " and so drops every collision of the link; fix it");
 }
 
-// A mimic joint follows multiplier * leader + offset; over the leader's whole range that
-// must stay within the follower's own limits (a continuous follower has none).
-void check_mimic_range(const Joint& follower, const Joint& leader, const SourceLocation& where) {
-  // Limits of a single point (lower == upper, often 0 0) are a placeholder some robots
-  // give mimic joints (Talos's grippers): the follower is then bounded by its leader alone.
-  if (follower.type == JointType::kContinuous || !(follower.upper > follower.lower)) return;
+// A mimic joint follows multiplier * leader + offset. Where, over the leader's whole
+// range, that leaves the follower's own limits, MoveIt loads the robot and the follower
+// follows the rule beyond them (its limits bound the leader's motion only through the
+// rule): so do we, with a notice (a continuous follower has no limits).
+void notice_mimic_range(const Joint& follower, const Joint& leader, const SourceLocation& where,
+                        std::vector<std::string>* notices) {
   const double a = follower.mimic_multiplier * leader.lower + follower.mimic_offset;
   const double b = follower.mimic_multiplier * leader.upper + follower.mimic_offset;
   const double low = std::min(a, b), high = std::max(a, b);
-  const double slack = 1e-9 * std::max(1.0, follower.upper - follower.lower);
-  if (std::isfinite(low) && std::isfinite(high) && low >= follower.lower - slack &&
-      high <= follower.upper + slack) {
-    return;
+  if (!std::isfinite(low) || !std::isfinite(high)) {
+    throw InputError(where, "multiplier and offset drive it beyond any finite value as '" +
+                                leader.name + "' moves within its limits; change them");
   }
+  // Limits of a single point (lower == upper, often 0 0) are a placeholder some robots
+  // give mimic joints (Talos's grippers): the follower is then bounded by its leader alone.
+  if (follower.type == JointType::kContinuous || !(follower.upper > follower.lower)) return;
+  const double slack = 1e-9 * std::max(1.0, follower.upper - follower.lower);
+  if (low >= follower.lower - slack && high <= follower.upper + slack) return;
+  if (notices == nullptr) return;
   std::ostringstream problem;
-  problem << "multiplier " << follower.mimic_multiplier << " and offset " << follower.mimic_offset
+  problem << where.file << ":" << where.line << ": " << where.key << ": multiplier "
+          << follower.mimic_multiplier << " and offset " << follower.mimic_offset
           << " drive it over [" << low << ", " << high << "] as '" << leader.name
           << "' moves over [" << leader.lower << ", " << leader.upper
-          << "], outside its own limits [" << follower.lower << ", " << follower.upper
-          << "]; change the multiplier or offset, or the limits of either joint";
-  throw InputError(where, problem.str());
+          << "], beyond its own limits [" << follower.lower << ", " << follower.upper
+          << "]; it follows the mimic rule there, as in MoveIt";
+  notices->push_back(problem.str());
 }
 
 }  // namespace
@@ -588,7 +594,15 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
       } else if (joint.is_single_dof()) {
         throw InputError(joint_where, "a revolute or prismatic joint needs a <limit>");
       }
-      if (j.mimic) {
+      if (j.mimic && !joint.is_single_dof()) {
+        // Nothing to drive (the Panda of MotionBenchMaker puts one on a fixed finger):
+        // MoveIt and urdfdom ignore it; so do we, saying so.
+        if (notices) {
+          notices->push_back(urdf_path + ":" + std::to_string(line_of(joint_lines, joint.name)) +
+                             ": joint '" + joint.name + "' mimic: a <mimic> on a " +
+                             joint_type_name(joint.type) + " joint drives nothing; ignored");
+        }
+      } else if (j.mimic) {
         joint.mimic_multiplier = j.mimic->multiplier;
         joint.mimic_offset = j.mimic->offset;
         // The master is resolved once all joints are known (it may come later).
@@ -616,7 +630,7 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
                        "mimics a joint that itself mimics another; chain them to the "
                        "master instead");
     }
-    check_mimic_range(joint, robot.joints[joint.mimic_joint], where);
+    notice_mimic_range(joint, robot.joints[joint.mimic_joint], where, notices);
   }
   if (robot.triangle_count() == 0) {
     const tinyxml2::XMLElement* root = doc.FirstChildElement("robot");
@@ -651,6 +665,7 @@ int apply_srdf(RobotModel* robot, const std::string& srdf_path,
                                               "enable_collisions",
                                               "link_sphere_approximation"};
   std::set<std::string> skipped;
+  std::vector<std::string> unknown_links;  // named by disable_collisions, not in the URDF
   int read = 0;
   std::set<std::pair<int, int>> pairs(robot->disabled_pairs.begin(), robot->disabled_pairs.end());
   for (const tinyxml2::XMLElement* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) {
@@ -672,13 +687,25 @@ int apply_srdf(RobotModel* robot, const std::string& srdf_path,
       }
       ends[k] = robot->find_link(name);
       if (ends[k] < 0) {
-        throw InputError(where, std::string(attributes[k]) + " names link '" + name +
-                                    "', which URDF '" + robot->source_file +
-                                    "' does not have; fix the name or use the matching URDF");
+        unknown_links.push_back(std::string(name) + " (line " +
+                                std::to_string(e->GetLineNum()) + ")");
       }
     }
+    // A pair naming a link the URDF lacks disables nothing: srdfdom skips it, warning.
+    if (ends[0] < 0 || ends[1] < 0) continue;
     ++read;
     if (ends[0] != ends[1]) pairs.emplace(std::min(ends[0], ends[1]), std::max(ends[0], ends[1]));
+  }
+  if (!unknown_links.empty() && notices) {
+    std::string list;
+    for (std::size_t i = 0; i < unknown_links.size() && i < 10; ++i)
+      list += (i ? ", " : "") + unknown_links[i];
+    if (unknown_links.size() > 10)
+      list += " and " + std::to_string(unknown_links.size() - 10) + " more";
+    notices->push_back(srdf_path + ": " + std::to_string(unknown_links.size()) +
+                       " disable_collisions link name(s) that URDF '" + robot->source_file +
+                       "' does not have: " + list + "; those pairs are skipped, as srdfdom "
+                       "skips them");
   }
   robot->disabled_pairs.assign(pairs.begin(), pairs.end());
   robot->srdf_file = srdf_path;

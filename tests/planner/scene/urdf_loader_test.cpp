@@ -316,7 +316,10 @@ TEST_F(UrdfLoader, RobotsWithTooManyLinksAreRefusedAtOnce) {
   EXPECT_EQ(error_of(chain_urdf(300)), "");
 }
 
-TEST_F(UrdfLoader, MimicJointsDrivenBeyondTheirLimitsAreRefused) {
+// As MoveIt loads them (issue 31): a mimic that drives its joint beyond the joint's own
+// limits loads, the joint following the rule there, with a notice naming the joint and
+// the range; one that drives it to infinity stays an error.
+TEST_F(UrdfLoader, MimicJointsDrivenBeyondTheirLimitsLoadWithANotice) {
   const std::string urdf = R"(<robot name="gripper">
   <link name="palm"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
   <link name="left"><collision><geometry><box size="0.01 0.01 0.1"/></geometry></collision></link>
@@ -334,10 +337,53 @@ TEST_F(UrdfLoader, MimicJointsDrivenBeyondTheirLimitsAreRefused) {
     return text;
   };
   EXPECT_EQ(error_of(with("1")), "");
-  expect_error(with("3"), "<joint name=\"follow\"", "joint 'follow' mimic",
-               {"drive it over [0, 0.12]", "outside its own limits [0, 0.04]"});
-  expect_error(with("-1"), "<joint name=\"follow\"", "joint 'follow' mimic",
-               {"drive it over [-0.04, 0]"});
+  EXPECT_TRUE(notices_.empty());
+  for (const auto& [multiplier, range] : {std::pair<std::string, std::string>{"3", "[0, 0.12]"},
+                                          {"-1", "[-0.04, 0]"}}) {
+    notices_.clear();
+    const std::string text = with(multiplier);
+    EXPECT_EQ(error_of(text), "") << multiplier;
+    ASSERT_EQ(notices_.size(), 1u) << multiplier;
+    const std::string prefix =
+        path_ + ":" + std::to_string(line_of(text, "<joint name=\"follow\"")) +
+        ": joint 'follow' mimic: ";
+    EXPECT_EQ(notices_[0].rfind(prefix, 0), 0u) << notices_[0];
+    EXPECT_NE(notices_[0].find("drive it over " + range), std::string::npos) << notices_[0];
+    EXPECT_NE(notices_[0].find("beyond its own limits [0, 0.04]"), std::string::npos)
+        << notices_[0];
+  }
+  // The follower follows the rule beyond its limits.
+  const RobotModel robot = load_urdf(scratch_.write("three.urdf", with("3")), {}, {"t", 0, ""});
+  const Joint& follow = robot.joints[robot.find_joint("follow")];
+  EXPECT_EQ(follow.mimic_joint, robot.find_joint("open"));
+  EXPECT_DOUBLE_EQ(follow.mimic_multiplier, 3);
+  std::string infinite = with("1e308");
+  infinite.replace(infinite.find("offset=\"0\""), 10, "offset=\"1.79e308\"");
+  expect_error(infinite, "<joint name=\"follow\"", "joint 'follow' mimic",
+               {"beyond any finite value"});
+}
+
+// As MoveIt and urdfdom load them: a <mimic> on a fixed joint drives nothing and is
+// ignored, with a notice (MotionBenchMaker's Panda puts one on its fixed finger).
+TEST_F(UrdfLoader, AMimicOnAFixedJointIsIgnoredWithANotice) {
+  const std::string text = R"(<robot name="hand">
+  <link name="palm"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="left"><collision><geometry><box size="0.01 0.01 0.1"/></geometry></collision></link>
+  <link name="right"><collision><geometry><box size="0.01 0.01 0.1"/></geometry></collision></link>
+  <joint name="finger1" type="fixed"><parent link="palm"/><child link="left"/>
+    <origin xyz="0 0.05 0"/></joint>
+  <joint name="finger2" type="fixed"><parent link="palm"/><child link="right"/>
+    <origin xyz="0 -0.05 0"/>
+    <mimic joint="finger1"/></joint>
+</robot>
+)";
+  EXPECT_EQ(error_of(text), "");
+  ASSERT_EQ(notices_.size(), 1u);
+  EXPECT_EQ(notices_[0], path_ + ":" + std::to_string(line_of(text, "<joint name=\"finger2\"")) +
+                             ": joint 'finger2' mimic: a <mimic> on a fixed joint drives "
+                             "nothing; ignored");
+  const RobotModel robot = load_urdf(path_, {}, {"t", 0, ""});
+  EXPECT_EQ(robot.joints[robot.find_joint("finger2")].mimic_joint, -1);
 }
 
 TEST(Adjacency, LinksJoinedThroughLinksWithoutGeometryAreAdjacent) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <optional>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -19,6 +20,7 @@
 #include "gplanner/planner/scene/scene.h"
 #include "gplanner/planner/scene/scene_collision_model.h"
 #include "gplanner/planner/scene/urdf_loader.h"
+#include "moveit_files.h"
 #include "planner_settings_reader.h"
 #include "gplanner/planner/scene/yaml_reader.h"
 #include "gplanner/planner/scene/yaml_structure.h"
@@ -38,7 +40,8 @@ Eigen::Isometry3d read_pose(const YamlReader& in, const YAML::Node& node, const 
   return X;
 }
 
-void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
+void read_robot(const YamlReader& in, const YAML::Node& node, const MoveItRequest* request,
+                Scene* scene) {
   const std::string key = "robot";
   in.expect_map(node, key,
                 {"mesh", "urdf", "srdf", "packages", "base", "base_pose", "planned_joints",
@@ -81,8 +84,9 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
   RobotModel& robot = scene->robot;
   scene->input_files.insert(scene->input_files.end(), robot.mesh_files.begin(),
                             robot.mesh_files.end());
+  std::string srdf_path;
   if (node["srdf"]) {
-    const std::string srdf_path = in.path(node["srdf"], key + ".srdf", kSrdfFile);
+    srdf_path = in.path(node["srdf"], key + ".srdf", kSrdfFile);
     scene->input_files.push_back(srdf_path);
     apply_srdf(&robot, srdf_path, in.at(node["srdf"], key + ".srdf"), &scene->notices);
   }
@@ -140,6 +144,19 @@ void read_robot(const YamlReader& in, const YAML::Node& node, Scene* scene) {
       for (int planned : space.planned_joints) {
         if (planned == j) in.fail(list[i], where, "joint listed twice; remove the repeat");
       }
+      space.planned_joints.push_back(j);
+      space.lower.push_back(robot.joints[j].lower);
+      space.upper.push_back(robot.joints[j].upper);
+      space.continuous.push_back(robot.joints[j].type == JointType::kContinuous);
+    }
+  }
+  if (!node["planned_joints"] && request != nullptr) {
+    // The joints of the request's planning group, from the SRDF, as MoveIt plans them.
+    if (srdf_path.empty()) {
+      in.fail(node, key, "the motion plan request plans group '" + request->group +
+                             "', which an SRDF defines: add srdf: (or list planned_joints)");
+    }
+    for (const int j : srdf_group_joints(robot, srdf_path, request->group, request->group_defined)) {
       space.planned_joints.push_back(j);
       space.lower.push_back(robot.joints[j].lower);
       space.upper.push_back(robot.joints[j].upper);
@@ -502,6 +519,112 @@ Eigen::AlignedBox3d Scene::bounds_S() const {
   return box;
 }
 
+// Joint values a MoveIt file gives (the planning scene's robot_state, then the
+// request's start_state over it, as MoveIt applies a start state): joints not planned
+// take them as their fixed values; planned joints' values are returned by name for the
+// start. Names the URDF lacks are left out with one notice; joints that take no value
+// (fixed ones) and mimic joints, which follow, are skipped.
+std::map<std::string, MoveItJointValue> apply_moveit_joint_values(
+    const std::vector<std::vector<MoveItJointValue>>& states, Scene* scene) {
+  const RobotModel& robot = scene->robot;
+  ConfigurationSpace& space = scene->space;
+  std::map<std::string, MoveItJointValue> planned;
+  std::set<std::string> unknown;
+  for (const std::vector<MoveItJointValue>& state : states) {
+    for (const MoveItJointValue& v : state) {
+      const int j = robot.find_joint(v.name);
+      if (j < 0) {
+        unknown.insert(v.name);
+        continue;
+      }
+      const Joint& joint = robot.joints[j];
+      if (!joint.is_single_dof() || joint.mimic_joint >= 0) continue;
+      if (!std::isfinite(v.value)) throw InputError(v.where, "joint '" + v.name + "': not a finite value");
+      if (std::find(space.planned_joints.begin(), space.planned_joints.end(), j) !=
+          space.planned_joints.end()) {
+        planned[v.name] = v;
+        continue;
+      }
+      if (joint.type != JointType::kContinuous && (v.value < joint.lower || v.value > joint.upper)) {
+        std::ostringstream problem;
+        problem << "joint '" << v.name << "' at " << v.value << " is outside its limits ["
+                << joint.lower << ", " << joint.upper << "]; give a value within them";
+        throw InputError(v.where, problem.str());
+      }
+      space.fixed_positions[j] = v.value;
+    }
+  }
+  if (!unknown.empty()) {
+    std::string list;
+    for (const std::string& name : unknown) list += (list.empty() ? "" : ", ") + name;
+    scene->notices.push_back("joint states name joints URDF '" + robot.source_file +
+                             "' does not have (" + list + "); their values are left out");
+  }
+  return planned;
+}
+
+// The request's start and goal as a scene file's start: and goal: nodes (joints by
+// name), each value checked against its joint's limits where the request gives it.
+std::pair<YAML::Node, YAML::Node> moveit_start_and_goal(
+    const MoveItRequest& request, const std::string& request_path,
+    const std::map<std::string, MoveItJointValue>& start_values, const Scene& scene) {
+  const RobotModel& robot = scene.robot;
+  const ConfigurationSpace& space = scene.space;
+  if (space.base != BaseType::kFixed) {
+    throw InputError({request_path, 0, "start_state"},
+                     "a motion plan request gives joint values only; plan it with a fixed-base "
+                     "robot (base: fixed)");
+  }
+  auto check = [&](const MoveItJointValue& v, int j) {
+    const Joint& joint = robot.joints[j];
+    if (!std::isfinite(v.value)) throw InputError(v.where, "joint '" + v.name + "': not a finite value");
+    if (joint.type != JointType::kContinuous && (v.value < joint.lower || v.value > joint.upper)) {
+      std::ostringstream problem;
+      problem << "joint '" << v.name << "' at " << v.value << " is outside its limits ["
+              << joint.lower << ", " << joint.upper << "]; give a value within them";
+      throw InputError(v.where, problem.str());
+    }
+  };
+  std::string group_joints;
+  for (const int j : space.planned_joints)
+    group_joints += (group_joints.empty() ? "" : ", ") + robot.joints[j].name;
+  YAML::Node start, goal;
+  for (const int j : space.planned_joints) {
+    const std::string& name = robot.joints[j].name;
+    const auto found = start_values.find(name);
+    if (found == start_values.end()) {
+      throw InputError({request_path, 0, "start_state.joint_state"},
+                       "gives no value for joint '" + name + "' of group '" + request.group +
+                           "' (nor does the planning scene's robot_state); give it");
+    }
+    check(found->second, j);
+    start["joints"][name] = found->second.value;
+  }
+  std::set<std::string> constrained;
+  for (const MoveItJointValue& v : request.goal) {
+    const int j = robot.find_joint(v.name);
+    if (j < 0 || std::find(space.planned_joints.begin(), space.planned_joints.end(), j) ==
+                     space.planned_joints.end()) {
+      throw InputError(v.where, "constrains joint '" + v.name + "', which is not planned (group '" +
+                                    request.group + "': " + group_joints +
+                                    "); constrain the group's joints only");
+    }
+    if (!constrained.insert(v.name).second)
+      throw InputError(v.where, "constrains joint '" + v.name + "' twice; give it once");
+    check(v, j);
+    goal["joints"][v.name] = v.value;
+  }
+  for (const int j : space.planned_joints) {
+    if (!constrained.count(robot.joints[j].name)) {
+      throw InputError({request_path, 0, "goal_constraints[0].joint_constraints"},
+                       "leaves joint '" + robot.joints[j].name + "' of group '" + request.group +
+                           "' free: gplanner plans to one configuration; constrain every joint "
+                           "of the group");
+    }
+  }
+  return {start, goal};
+}
+
 Scene load_scene(const std::string& path) {
   const YAML::Node root = load_checked_yaml(path, kSceneFile, "planner");
   const YamlReader in(path);
@@ -511,28 +634,72 @@ Scene load_scene(const std::string& path) {
   try {
     in.expect_map(root, "",
                   {"name", "description", "narrowest_passage", "robot", "obstacles", "bounds",
-                   "start", "goal", "planner"});
+                   "start", "goal", "planner", "moveit"});
     scene.name = root["name"] ? in.text(root["name"], "name") : fs::path(path).stem().string();
     if (root["description"]) scene.description = in.text(root["description"], "description");
     if (root["narrowest_passage"]) {
       scene.narrowest_passage = in.text(root["narrowest_passage"], "narrowest_passage");
     }
-    read_robot(in, in.required(root, "", "robot"), &scene);
+    // MoveIt's files (docs/scenes.md, "MoveIt files"): a planning scene's obstacles, a
+    // motion plan request's group, start and goal.
+    const YAML::Node moveit = root["moveit"];
+    std::optional<MoveItRequest> request;
+    std::string request_path, moveit_scene_path;
+    if (moveit) {
+      in.expect_map(moveit, "moveit", {"scene", "request"});
+      if (moveit["request"]) {
+        request_path = in.path(moveit["request"], "moveit.request", kMoveItRequestFile);
+        scene.input_files.push_back(request_path);
+        request = read_moveit_request(request_path);
+        if (root["start"] || root["goal"]) {
+          const YAML::Node given = root["start"] ? root["start"] : root["goal"];
+          in.fail(given, root["start"] ? "start" : "goal",
+                  "the start and goal come from moveit.request; remove start: and goal:");
+        }
+      }
+      if (moveit["scene"]) {
+        moveit_scene_path = in.path(moveit["scene"], "moveit.scene", kMoveItSceneFile);
+        scene.input_files.push_back(moveit_scene_path);
+      }
+    }
+    read_robot(in, in.required(root, "", "robot"), request ? &*request : nullptr, &scene);
     notice_open_links(&scene);
     read_bounds(in, root["bounds"], &scene.space);
     read_obstacles(in, root["obstacles"], &scene);
+    std::vector<std::vector<MoveItJointValue>> joint_states;
+    if (!moveit_scene_path.empty()) {
+      joint_states.push_back(read_moveit_scene(moveit_scene_path, &scene));
+      if (scene.obstacles.size() > kMaxObstacles) {
+        in.fail(moveit["scene"], "moveit.scene",
+                "brings the obstacles to " + std::to_string(scene.obstacles.size()) +
+                    ", more than the " + std::to_string(kMaxObstacles) + " a scene may have");
+      }
+    }
+    if (request) joint_states.push_back(request->start);
+    const std::map<std::string, MoveItJointValue> start_values =
+        apply_moveit_joint_values(joint_states, &scene);
     scene.dropped_obstacle_triangles = drop_unreachable_obstacle_triangles(&scene);
     move_scene_frame(&scene);
-    const YAML::Node start = in.required(root, "", "start");
-    const YAML::Node goal = in.required(root, "", "goal");
+    YAML::Node start, goal;
+    if (request) {
+      std::tie(start, goal) = moveit_start_and_goal(*request, request_path, start_values, scene);
+    } else {
+      start = in.required(root, "", "start");
+      goal = in.required(root, "", "goal");
+    }
     for (auto [node, key, row] : {std::make_tuple(start, "start", &scene.start),
                                   std::make_tuple(goal, "goal", &scene.goal)}) {
       const std::vector<double> values = read_configuration(in, node, key, scene);
       row->resize(values.size());
       scene.space.from_file_values(values.data(), row->data());
     }
-    scene.start_defined = in.at(start, "start");
-    scene.goal_defined = in.at(goal, "goal");
+    if (request) {
+      scene.start_defined = {request_path, 0, "start_state"};
+      scene.goal_defined = {request_path, 0, "goal_constraints"};
+    } else {
+      scene.start_defined = in.at(start, "start");
+      scene.goal_defined = in.at(goal, "goal");
+    }
     scene.planner = read_planner_settings(in, root["planner"]);
     refine_primitive_obstacles(&scene);
     check_band_representable(scene, in.at(root["robot"], "robot"), in.at(root["bounds"], "bounds"));

@@ -712,4 +712,120 @@ int apply_srdf(RobotModel* robot, const std::string& srdf_path,
   return read;
 }
 
+namespace {
+
+// The <group name="group"> element of an SRDF, or null.
+const tinyxml2::XMLElement* find_group(const tinyxml2::XMLElement* root, const std::string& group) {
+  for (const tinyxml2::XMLElement* e = root->FirstChildElement("group"); e;
+       e = e->NextSiblingElement("group")) {
+    const char* name = e->Attribute("name");
+    if (name && group == name) return e;
+  }
+  return nullptr;
+}
+
+// Adds to `joints` the joints of group `g` (the index of each in robot.joints), following
+// nested groups (`depth` guards against a group that contains itself).
+void collect_group_joints(const RobotModel& robot, const tinyxml2::XMLElement* root,
+                          const tinyxml2::XMLElement* g, const std::string& srdf_path, int depth,
+                          std::set<int>* joints) {
+  if (depth > 32) {
+    throw InputError({srdf_path, g->GetLineNum(), "group"},
+                     "groups nested more than 32 deep (a group that contains itself?); "
+                     "fix the group");
+  }
+  for (const tinyxml2::XMLElement* e = g->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    const SourceLocation where{srdf_path, e->GetLineNum(), "group " + tag};
+    auto attribute = [&](const char* name) {
+      const char* value = e->Attribute(name);
+      if (value == nullptr) throw InputError(where, std::string("missing attribute ") + name);
+      return std::string(value);
+    };
+    auto link_of = [&](const std::string& name) {
+      const int l = robot.find_link(name);
+      if (l < 0)
+        throw InputError(where, "names link '" + name + "', which URDF '" + robot.source_file +
+                                    "' does not have; fix the name or use the matching URDF");
+      return l;
+    };
+    if (tag == "joint") {
+      const std::string name = attribute("name");
+      const int j = robot.find_joint(name);
+      if (j >= 0) {
+        joints->insert(j);
+      } else {
+        // A virtual joint of the SRDF (the robot's base in the world) is no URDF joint.
+        bool is_virtual = false;
+        for (const tinyxml2::XMLElement* v = root->FirstChildElement("virtual_joint"); v;
+             v = v->NextSiblingElement("virtual_joint")) {
+          const char* vname = v->Attribute("name");
+          is_virtual = is_virtual || (vname && name == vname);
+        }
+        if (!is_virtual)
+          throw InputError(where, "names joint '" + name + "', which URDF '" +
+                                      robot.source_file + "' does not have; fix the name");
+      }
+    } else if (tag == "link") {
+      const int l = link_of(attribute("name"));
+      if (robot.links[l].parent_joint >= 0) joints->insert(robot.links[l].parent_joint);
+    } else if (tag == "chain") {
+      const int base = link_of(attribute("base_link"));
+      int l = link_of(attribute("tip_link"));
+      while (l != base) {
+        const int j = robot.links[l].parent_joint;
+        if (j < 0) {
+          throw InputError(where, "tip_link '" + robot.links[link_of(attribute("tip_link"))].name +
+                                      "' does not hang from base_link '" + robot.links[base].name +
+                                      "'; give a base_link above the tip");
+        }
+        joints->insert(j);
+        l = robot.joints[j].parent_link;
+      }
+    } else if (tag == "group") {
+      const std::string name = attribute("name");
+      const tinyxml2::XMLElement* sub = find_group(root, name);
+      if (sub == nullptr) throw InputError(where, "names group '" + name + "', which the SRDF lacks");
+      collect_group_joints(robot, root, sub, srdf_path, depth + 1, joints);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<int> srdf_group_joints(const RobotModel& robot, const std::string& srdf_path,
+                                   const std::string& group,
+                                   const SourceLocation& referenced_from) {
+  const std::string xml = read_input_file(srdf_path, kSrdfFile, referenced_from);
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    throw InputError({srdf_path, doc.ErrorLineNum(), "xml"},
+                     std::string("not well-formed XML: ") + doc.ErrorName() + "; fix the file");
+  }
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  const tinyxml2::XMLElement* g = root ? find_group(root, group) : nullptr;
+  if (g == nullptr) {
+    std::string names;
+    for (const tinyxml2::XMLElement* e = root ? root->FirstChildElement("group") : nullptr; e;
+         e = e->NextSiblingElement("group")) {
+      if (e->Attribute("name")) names += (names.empty() ? "" : ", ") + std::string(e->Attribute("name"));
+    }
+    throw InputError(referenced_from, "SRDF '" + srdf_path + "' has no group '" + group +
+                                          "'; use one of its groups (" +
+                                          (names.empty() ? "it has none" : names) + ")");
+  }
+  std::set<int> joints;
+  collect_group_joints(robot, root, g, srdf_path, 0, &joints);
+  std::vector<int> result;
+  for (const int j : joints) {  // robot.joints is in tree order, parents first
+    if (robot.joints[j].is_single_dof() && robot.joints[j].mimic_joint < 0) result.push_back(j);
+  }
+  if (result.empty()) {
+    throw InputError({srdf_path, g->GetLineNum(), "group '" + group + "'"},
+                     "has no joint that takes a value (revolute, continuous or prismatic); "
+                     "plan another group");
+  }
+  return result;
+}
+
 }  // namespace gplanner

@@ -24,6 +24,8 @@ inline constexpr InputFileKind kUrdfFile{"URDF", 64 * kMiB};
 inline constexpr InputFileKind kSrdfFile{"SRDF", 16 * kMiB};
 inline constexpr InputFileKind kMeshFile{"mesh", 1024 * kMiB};
 inline constexpr InputFileKind kRoadmapFile{"roadmap file", 16384 * kMiB};
+inline constexpr InputFileKind kMoveItSceneFile{"MoveIt planning scene", 64 * kMiB};
+inline constexpr InputFileKind kMoveItRequestFile{"MoveIt motion plan request", 16 * kMiB};
 
 // Why `path` cannot be read as a `kind` file ("is a folder, not a file; name a mesh
 // file"), or "" when it is a readable regular file within the kind's size limit.

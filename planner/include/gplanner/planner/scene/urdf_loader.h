@@ -35,10 +35,19 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
                      std::vector<std::string>* notices = nullptr);
 
 // Adds the SRDF's disable_collisions pairs. Elements outside what we use are skipped;
-// elements outside the SRDF core are reported once each in `notices`. A pair naming a
-// link the URDF lacks is an InputError. Returns the number of disable_collisions
-// elements read.
+// elements outside the SRDF core are reported once each in `notices`. Pairs naming links
+// the URDF lacks are skipped, as srdfdom skips them, with one notice listing them.
+// Returns the number of disable_collisions elements applied.
 int apply_srdf(RobotModel* robot, const std::string& srdf_path,
                const SourceLocation& referenced_from, std::vector<std::string>* notices);
+
+// The joints of the SRDF's planning group `group` that take a value (revolute,
+// continuous, prismatic, not mimic), in the robot's order (parents first), as MoveIt
+// makes them from the group's <joint>, <link>, <chain> and nested <group> elements.
+// Throws InputError naming the SRDF (or `referenced_from` when the group is missing)
+// when the group does not exist or names what the URDF lacks.
+std::vector<int> srdf_group_joints(const RobotModel& robot, const std::string& srdf_path,
+                                   const std::string& group,
+                                   const SourceLocation& referenced_from);
 
 }  // namespace gplanner

@@ -1,0 +1,444 @@
+#include "moveit_files.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "gplanner/planner/scene/input_file.h"
+#include "gplanner/planner/scene/input_limits.h"
+#include "gplanner/planner/scene/triangle_mesh.h"
+#include "gplanner/planner/scene/yaml_reader.h"
+#include "gplanner/planner/scene/yaml_structure.h"
+
+namespace gplanner {
+namespace {
+
+// The fields of the messages read, as ROS writes them to YAML; others are refused (a
+// misspelt key would drop what it holds).
+const std::set<std::string> kPlanningSceneKeys = {
+    "name",      "robot_state",   "robot_model_name", "fixed_frame_transforms",
+    "allowed_collision_matrix",   "link_padding",     "link_scale",
+    "object_colors",              "world",            "is_diff"};
+const std::set<std::string> kCollisionObjectKeys = {
+    "header",        "pose",   "id",         "type",           "primitives",
+    "primitive_poses", "meshes", "mesh_poses", "planes",         "plane_poses",
+    "subframe_names", "subframe_poses", "operation"};
+
+// A vector of three as ROS writes a Point or Vector3: [x, y, z] or {x:, y:, z:}.
+Eigen::Vector3d read_xyz(const YamlReader& in, const YAML::Node& node, const std::string& key) {
+  if (node.IsMap()) {
+    in.expect_map(node, key, {"x", "y", "z"});
+    return {in.number(in.required(node, key, "x"), key + ".x"),
+            in.number(in.required(node, key, "y"), key + ".y"),
+            in.number(in.required(node, key, "z"), key + ".z")};
+  }
+  return in.vector3(node, key);
+}
+
+// A quaternion as ROS writes one: [x, y, z, w] or {x:, y:, z:, w:} (w last, unlike a
+// gplanner scene's quat_wxyz).
+Eigen::Quaterniond read_xyzw(const YamlReader& in, const YAML::Node& node,
+                             const std::string& key) {
+  std::vector<double> v;
+  if (node.IsMap()) {
+    in.expect_map(node, key, {"x", "y", "z", "w"});
+    for (const char* part : {"x", "y", "z", "w"})
+      v.push_back(in.number(in.required(node, key, part), key + "." + part));
+  } else {
+    v = in.numbers(node, key, 4);
+  }
+  double largest = 0;
+  for (const double part : v) largest = std::max(largest, std::abs(part));
+  if (largest < 1e-9) {
+    in.fail(node, key, "zero-length quaternion; give [x, y, z, w] with w = 1 for no rotation");
+  }
+  Eigen::Quaterniond q(v[3] / largest, v[0] / largest, v[1] / largest, v[2] / largest);
+  // MoveIt normalises what it is given, as do we, but one far from unit length is a
+  // mistake more often than a rotation: refuse it.
+  const double norm = q.norm() * largest;
+  if (std::abs(norm - 1) > 1e-3) {
+    std::ostringstream problem;
+    problem << "quaternion of length " << norm << ", not 1; give a unit quaternion [x, y, z, w]";
+    in.fail(node, key, problem.str());
+  }
+  return q.normalized();
+}
+
+// A geometry_msgs/Pose: {position:, orientation:}, either part absent meaning none.
+Eigen::Isometry3d read_ros_pose(const YamlReader& in, const YAML::Node& node,
+                                const std::string& key) {
+  in.expect_map(node, key, {"position", "orientation"});
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  if (node["position"]) X.translation() = read_xyz(in, node["position"], key + ".position");
+  if (node["orientation"])
+    X.linear() = read_xyzw(in, node["orientation"], key + ".orientation").toRotationMatrix();
+  return X;
+}
+
+// The frame an object is given in must be the world (or the robot's root, which a
+// planning scene's fixed robot sits at): other frames are not resolved here.
+void check_frame(const YamlReader& in, const YAML::Node& header, const std::string& key,
+                 const Scene& scene) {
+  if (!header) return;
+  if (!header.IsMap()) in.fail(header, key, "expected a std_msgs/Header map");
+  const YAML::Node frame = header["frame_id"];
+  if (!frame) return;
+  std::string id = in.text(frame, key + ".frame_id");
+  if (!id.empty() && id[0] == '/') id = id.substr(1);
+  const std::string root = scene.robot.links.empty() ? "" : scene.robot.links[0].name;
+  const bool root_at_world = scene.space.base == BaseType::kFixed &&
+                             scene.space.X_SB.isApprox(Eigen::Isometry3d::Identity());
+  if (id.empty() || id == "world" || id == "map" || (id == root && root_at_world)) return;
+  in.fail(frame, key + ".frame_id",
+          "frame '" + id + "' is not resolved here: give the object in the world frame "
+          "(frame_id: world, or the robot's root '" + root + "' where the robot sits at the origin)");
+}
+
+// One primitive of a collision object as an obstacle: MoveIt's SolidPrimitive (type by
+// name or number, dimensions as shape_msgs defines them), placed at X_WP.
+Obstacle primitive_obstacle(const YamlReader& in, const YAML::Node& node, const std::string& key,
+                            const Eigen::Isometry3d& X_WP) {
+  in.expect_map(node, key, {"type", "dimensions"});
+  const YAML::Node type = in.required(node, key, "type");
+  std::string name = in.text(type, key + ".type");
+  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  static const std::map<std::string, std::string> kNumbered = {
+      {"1", "box"}, {"2", "sphere"}, {"3", "cylinder"}, {"4", "cone"}};
+  if (kNumbered.count(name)) name = kNumbered.at(name);
+  const YAML::Node dims = in.required(node, key, "dimensions");
+  const std::string dims_key = key + ".dimensions";
+  Obstacle obstacle;
+  obstacle.defined = in.at(node, key);
+  obstacle.X_SO = X_WP;  // S is W until moved
+  TriangleMesh mesh;
+  auto positive = [&](const std::vector<double>& values, const char* what) {
+    for (const double v : values)
+      if (!(v > 0)) in.fail(dims, dims_key, std::string(what) + " must be positive");
+  };
+  if (name == "box") {
+    const std::vector<double> v = in.numbers(dims, dims_key, 3);
+    positive(v, "a box's side lengths [x, y, z]");
+    obstacle.shape = ObstacleShape::kBox;
+    obstacle.dimensions = Eigen::Vector3d(v[0], v[1], v[2]);
+    mesh = make_box(obstacle.dimensions);
+  } else if (name == "sphere") {
+    const std::vector<double> v = in.numbers(dims, dims_key, 1);
+    positive(v, "a sphere's radius [r]");
+    obstacle.shape = ObstacleShape::kSphere;
+    obstacle.dimensions = Eigen::Vector3d(v[0], 0, 0);
+    mesh = make_sphere(v[0]);
+  } else if (name == "cylinder") {
+    const std::vector<double> v = in.numbers(dims, dims_key, 2);  // height, radius
+    positive(v, "a cylinder's [height, radius]");
+    obstacle.shape = ObstacleShape::kCylinder;
+    obstacle.dimensions = Eigen::Vector3d(v[1], v[0], 0);  // radius, length
+    mesh = make_cylinder(v[1], v[0]);
+  } else if (name == "cone") {
+    in.fail(type, key + ".type",
+            "cone primitives are not read yet; give the cone as a mesh (meshes: vertices and "
+            "triangles)");
+  } else {
+    in.fail(type, key + ".type",
+            "'" + name + "' is not a SolidPrimitive type; use box, sphere, cylinder (or 1, 2, 3)");
+  }
+  obstacle.name = name;
+  obstacle.solid.assign(mesh.triangle_count(), 1);
+  obstacle.mesh_S = transformed(mesh, X_WP);
+  return obstacle;
+}
+
+// One shape_msgs/Mesh: vertices ([x, y, z] or {x:, y:, z:}) and triangles
+// ({vertex_indices: [a, b, c]} or [a, b, c]), placed at X_WM; its closed components solid.
+Obstacle mesh_obstacle(const YamlReader& in, const YAML::Node& node, const std::string& key,
+                       const Eigen::Isometry3d& X_WM) {
+  in.expect_map(node, key, {"vertices", "triangles"});
+  const YAML::Node vertices = in.required(node, key, "vertices");
+  const YAML::Node triangles = in.required(node, key, "triangles");
+  if (!vertices.IsSequence()) in.fail(vertices, key + ".vertices", "expected a list of points");
+  if (!triangles.IsSequence())
+    in.fail(triangles, key + ".triangles", "expected a list of triangles");
+  if (triangles.size() > kMaxMeshTriangles) {
+    in.fail(triangles, key + ".triangles",
+            "holds " + std::to_string(triangles.size()) + " triangles, more than the " +
+                std::to_string(kMaxMeshTriangles) + " a mesh may have; simplify it");
+  }
+  TriangleMesh mesh;
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    mesh.vertices.push_back(read_xyz(in, vertices[i], key + ".vertices[" + std::to_string(i) + "]"));
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const std::string where = key + ".triangles[" + std::to_string(i) + "]";
+    YAML::Node t = triangles[i];
+    if (t.IsMap()) {
+      in.expect_map(t, where, {"vertex_indices"});
+      t = in.required(t, where, "vertex_indices");
+    }
+    const std::vector<double> v = in.numbers(t, where, 3);
+    Eigen::Vector3i corner;
+    for (int k = 0; k < 3; ++k) {
+      if (v[k] != std::floor(v[k]) || v[k] < 0 || v[k] >= double(vertices.size())) {
+        in.fail(t, where,
+                "vertex index " + std::to_string(v[k]) + " is not one of the mesh's " +
+                    std::to_string(vertices.size()) + " vertices (0-based)");
+      }
+      corner(k) = static_cast<int>(v[k]);
+    }
+    mesh.triangles.push_back(corner);
+  }
+  if (mesh.triangles.empty()) in.fail(triangles, key + ".triangles", "no triangle; give at least one");
+  Obstacle obstacle;
+  obstacle.name = "mesh";
+  obstacle.defined = in.at(node, key);
+  obstacle.X_SO = X_WM;
+  obstacle.mesh_S = transformed(mesh, X_WM);  // solid left empty: decided from the mesh
+  return obstacle;
+}
+
+void read_collision_objects(const YamlReader& in, const YAML::Node& world, Scene* scene) {
+  if (!world) return;
+  in.expect_map(world, "world", {"collision_objects", "octomap"});
+  if (world["octomap"] && world["octomap"].IsMap() && world["octomap"]["octomap"] &&
+      world["octomap"]["octomap"]["data"] && world["octomap"]["octomap"]["data"].size() > 0) {
+    in.fail(world["octomap"], "world.octomap", "octomaps are not read; give the obstacles as objects");
+  }
+  const YAML::Node objects = world["collision_objects"];
+  if (!objects) return;
+  if (!objects.IsSequence())
+    in.fail(objects, "world.collision_objects", "expected a list of collision objects");
+  if (objects.size() > kMaxObstacles) {
+    in.fail(objects, "world.collision_objects",
+            "lists " + std::to_string(objects.size()) + " objects, more than the " +
+                std::to_string(kMaxObstacles) + " a scene may have");
+  }
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const YAML::Node object = objects[i];
+    const std::string key = "world.collision_objects[" + std::to_string(i) + "]";
+    in.expect_map(object, key, kCollisionObjectKeys);
+    const std::string id = object["id"] ? in.text(object["id"], key + ".id") : "object";
+    check_frame(in, object["header"], key + ".header", *scene);
+    if (object["operation"]) {
+      const std::string op = in.text(object["operation"], key + ".operation");
+      if (op != "0" && op != "add" && op != "ADD")
+        in.fail(object["operation"], key + ".operation",
+                "only ADD (0) is read in a planning scene; give the objects as they stand");
+    }
+    if (object["planes"] && object["planes"].size() > 0)
+      in.fail(object["planes"], key + ".planes", "planes (infinite) are not read; give a thin box");
+    // The object's pose (since MoveIt 1.1): shapes are placed relative to it; without
+    // one they are in the header's frame.
+    const Eigen::Isometry3d X_WO = object["pose"] ? read_ros_pose(in, object["pose"], key + ".pose")
+                                                  : Eigen::Isometry3d::Identity();
+    for (const auto& [shapes_key, poses_key] :
+         {std::pair<const char*, const char*>{"primitives", "primitive_poses"},
+          {"meshes", "mesh_poses"}}) {
+      const YAML::Node shapes = object[shapes_key];
+      if (!shapes) continue;
+      const YAML::Node poses = object[poses_key];
+      if (!shapes.IsSequence()) in.fail(shapes, key + "." + shapes_key, "expected a list");
+      if (!poses || !poses.IsSequence() || poses.size() != shapes.size()) {
+        in.fail(poses ? poses : object, key + "." + poses_key,
+                "give one pose per entry of " + std::string(shapes_key) + " (" +
+                    std::to_string(shapes.size()) + ")");
+      }
+      for (std::size_t k = 0; k < shapes.size(); ++k) {
+        const std::string index = "[" + std::to_string(k) + "]";
+        const Eigen::Isometry3d X_WP =
+            X_WO * read_ros_pose(in, poses[k], key + "." + poses_key + index);
+        Obstacle obstacle =
+            std::string(shapes_key) == "primitives"
+                ? primitive_obstacle(in, shapes[k], key + "." + shapes_key + index, X_WP)
+                : mesh_obstacle(in, shapes[k], key + "." + shapes_key + index, X_WP);
+        obstacle.name = shapes.size() == 1 ? id : id + index;
+        scene->obstacles.push_back(std::move(obstacle));
+      }
+    }
+  }
+}
+
+// The allowed collision matrix: entry_names, and entry_values as a list of rows (each a
+// list of booleans, or {enabled: [...]} as the message writes it).
+void read_allowed_collisions(const YamlReader& in, const YAML::Node& acm, Scene* scene) {
+  if (!acm) return;
+  const std::string key = "allowed_collision_matrix";
+  in.expect_map(acm, key,
+                {"entry_names", "entry_values", "default_entry_names", "default_entry_values"});
+  RobotModel& robot = scene->robot;
+  std::vector<std::string> names;
+  if (acm["entry_names"]) {
+    const YAML::Node list = acm["entry_names"];
+    if (!list.IsSequence()) in.fail(list, key + ".entry_names", "expected a list of names");
+    for (std::size_t i = 0; i < list.size(); ++i)
+      names.push_back(in.text(list[i], key + ".entry_names[" + std::to_string(i) + "]"));
+  }
+  const YAML::Node rows = acm["entry_values"];
+  if (!names.empty() && (!rows || !rows.IsSequence() || rows.size() != names.size())) {
+    in.fail(rows ? rows : acm, key + ".entry_values",
+            "give one row per entry name (" + std::to_string(names.size()) + ")");
+  }
+  std::set<std::pair<int, int>> pairs(robot.disabled_pairs.begin(), robot.disabled_pairs.end());
+  std::set<std::string> not_links;
+  for (std::size_t r = 0; r < names.size(); ++r) {
+    const std::string row_key = key + ".entry_values[" + std::to_string(r) + "]";
+    YAML::Node row = rows[r];
+    if (row.IsMap()) {
+      in.expect_map(row, row_key, {"enabled"});
+      row = in.required(row, row_key, "enabled");
+    }
+    if (!row.IsSequence() || row.size() != names.size())
+      in.fail(row, row_key, "give one value per entry name (" + std::to_string(names.size()) + ")");
+    for (std::size_t c = 0; c < names.size(); ++c) {
+      bool allowed = false;
+      if (!row[c].IsScalar() || !YAML::convert<bool>::decode(row[c], allowed))
+        in.fail(row[c], row_key + "[" + std::to_string(c) + "]", "expected true or false");
+      if (!allowed || r == c) continue;
+      const int a = robot.find_link(names[r]), b = robot.find_link(names[c]);
+      if (a < 0) not_links.insert(names[r]);
+      if (b < 0) not_links.insert(names[c]);
+      if (a >= 0 && b >= 0) pairs.emplace(std::min(a, b), std::max(a, b));
+    }
+  }
+  robot.disabled_pairs.assign(pairs.begin(), pairs.end());
+  if (!not_links.empty()) {
+    std::string list;
+    for (const std::string& name : not_links) list += (list.empty() ? "" : ", ") + name;
+    scene->notices.push_back(in.file() + ": " + key + ": collisions allowed with " + list +
+                             " (not links of the robot) are still checked: gplanner checks "
+                             "the robot against every obstacle (conservative)");
+  }
+  if (acm["default_entry_values"] && acm["default_entry_values"].size() > 0) {
+    scene->notices.push_back(in.file() + ": " + key +
+                             ".default_entry_values: default allowed collisions are not "
+                             "applied; those pairs are checked (conservative)");
+  }
+}
+
+// robot_state.joint_state (names and positions), and a multi-DOF state that must be the
+// identity (the base's pose is the scene file's robot.base_pose).
+std::vector<MoveItJointValue> read_joint_state(const YamlReader& in, const YAML::Node& state,
+                                               const std::string& key) {
+  std::vector<MoveItJointValue> values;
+  if (!state) return values;
+  if (!state.IsMap()) in.fail(state, key, "expected a moveit_msgs/RobotState map");
+  const YAML::Node joints = state["joint_state"];
+  if (joints) {
+    const std::string jkey = key + ".joint_state";
+    if (!joints.IsMap()) in.fail(joints, jkey, "expected a sensor_msgs/JointState map");
+    const YAML::Node names = joints["name"];
+    const YAML::Node positions = joints["position"];
+    if (names) {
+      if (!names.IsSequence()) in.fail(names, jkey + ".name", "expected a list of joint names");
+      if (!positions || !positions.IsSequence() || positions.size() != names.size()) {
+        in.fail(positions ? positions : joints, jkey + ".position",
+                "give one position per name (" + std::to_string(names.size()) + ")");
+      }
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        const std::string index = "[" + std::to_string(i) + "]";
+        values.push_back({in.text(names[i], jkey + ".name" + index),
+                          in.number(positions[i], jkey + ".position" + index),
+                          in.at(positions[i], jkey + ".position" + index)});
+      }
+    }
+  }
+  const YAML::Node multi = state["multi_dof_joint_state"];
+  if (multi && multi.IsMap() && multi["transforms"] && multi["transforms"].IsSequence()) {
+    const YAML::Node transforms = multi["transforms"];
+    for (std::size_t i = 0; i < transforms.size(); ++i) {
+      const std::string tkey = key + ".multi_dof_joint_state.transforms[" + std::to_string(i) + "]";
+      const YAML::Node t = transforms[i];
+      in.expect_map(t, tkey, {"translation", "rotation"});
+      const Eigen::Vector3d p =
+          t["translation"] ? read_xyz(in, t["translation"], tkey + ".translation")
+                           : Eigen::Vector3d::Zero();
+      const Eigen::Quaterniond q = t["rotation"] ? read_xyzw(in, t["rotation"], tkey + ".rotation")
+                                                 : Eigen::Quaterniond::Identity();
+      if (p.norm() > 1e-12 || q.angularDistance(Eigen::Quaterniond::Identity()) > 1e-12) {
+        in.fail(t, tkey,
+                "a base (virtual joint) away from the origin is not read here; give the "
+                "robot's base pose in the scene file's robot.base_pose");
+      }
+    }
+  }
+  return values;
+}
+
+}  // namespace
+
+std::vector<MoveItJointValue> read_moveit_scene(const std::string& path, Scene* scene) {
+  const YAML::Node root = load_checked_yaml(path, kMoveItSceneFile, "");
+  const YamlReader in(path);
+  try {
+    in.expect_map(root, "", kPlanningSceneKeys);
+    read_collision_objects(in, root["world"], scene);
+    read_allowed_collisions(in, root["allowed_collision_matrix"], scene);
+    if (root["link_padding"] && root["link_padding"].size() > 0) {
+      scene->notices.push_back(path + ": link_padding is not applied: gplanner checks the "
+                                      "links as modelled, within its tolerance band");
+    }
+    return read_joint_state(in, root["robot_state"], "robot_state");
+  } catch (const YAML::Exception& e) {
+    throw InputError({path, e.mark.line + 1, "yaml"}, e.msg + "; use plain keys and values");
+  }
+}
+
+MoveItRequest read_moveit_request(const std::string& path) {
+  const YAML::Node root = load_checked_yaml(path, kMoveItRequestFile, "");
+  const YamlReader in(path);
+  MoveItRequest request;
+  try {
+    if (!root.IsMap()) in.fail(root, "", "expected a moveit_msgs/MotionPlanRequest map");
+    const YAML::Node group = in.required(root, "", "group_name");
+    request.group = in.text(group, "group_name");
+    request.group_defined = in.at(group, "group_name");
+    request.start = read_joint_state(in, root["start_state"], "start_state");
+    const YAML::Node path_constraints = root["path_constraints"];
+    if (path_constraints && path_constraints.IsMap()) {
+      for (const char* kind : {"joint_constraints", "position_constraints",
+                               "orientation_constraints", "visibility_constraints"}) {
+        if (path_constraints[kind] && path_constraints[kind].size() > 0) {
+          in.fail(path_constraints[kind], std::string("path_constraints.") + kind,
+                  "path constraints are not honoured by gplanner's planners; leave them out");
+        }
+      }
+    }
+    const YAML::Node goals = in.required(root, "", "goal_constraints");
+    if (!goals.IsSequence() || goals.size() != 1) {
+      in.fail(goals, "goal_constraints",
+              "give exactly one goal (a list of one Constraints); gplanner plans to one joint goal");
+    }
+    const YAML::Node goal = goals[0];
+    const std::string gkey = "goal_constraints[0]";
+    if (!goal.IsMap()) in.fail(goal, gkey, "expected a moveit_msgs/Constraints map");
+    for (const char* kind :
+         {"position_constraints", "orientation_constraints", "visibility_constraints"}) {
+      if (goal[kind] && goal[kind].size() > 0) {
+        in.fail(goal[kind], gkey + "." + kind,
+                "not a joint goal: gplanner plans to joint goals; give joint_constraints for "
+                "every joint of the group (solve the pose for them first)");
+      }
+    }
+    const YAML::Node joints = goal["joint_constraints"];
+    if (!joints || !joints.IsSequence() || joints.size() == 0) {
+      in.fail(joints ? joints : goal, gkey + ".joint_constraints",
+              "no joint constraints: give the goal's value of every joint of the group");
+    }
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+      const std::string jkey = gkey + ".joint_constraints[" + std::to_string(i) + "]";
+      const YAML::Node c = joints[i];
+      in.expect_map(c, jkey, {"joint_name", "position", "tolerance_above", "tolerance_below",
+                              "weight"});
+      const YAML::Node position = in.required(c, jkey, "position");
+      request.goal.push_back({in.text(in.required(c, jkey, "joint_name"), jkey + ".joint_name"),
+                              in.number(position, jkey + ".position"),
+                              in.at(position, jkey + ".position")});
+    }
+  } catch (const YAML::Exception& e) {
+    throw InputError({path, e.mark.line + 1, "yaml"}, e.msg + "; use plain keys and values");
+  }
+  return request;
+}
+
+}  // namespace gplanner

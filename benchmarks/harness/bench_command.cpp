@@ -1,11 +1,19 @@
 #include "harness/bench_command.h"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <map>
+#include <set>
 #include <sstream>
 
 #include "harness/bench_baseline.h"
@@ -97,6 +105,70 @@ void make_output_folder(const std::string& dir) {
                      "); name a folder that can be created");
 }
 
+// A folder of its own under the system's temporary folder, removed with its contents
+// when it goes (none when `prefix` is empty).
+class ScratchFolder {
+ public:
+  explicit ScratchFolder(const std::string& prefix) {
+    if (prefix.empty()) return;
+    std::string pattern = (fs::temp_directory_path() / (prefix + "-XXXXXX")).string();
+    if (::mkdtemp(pattern.data()) == nullptr)
+      throw std::runtime_error("cannot make a scratch folder " + pattern + ": " + std::strerror(errno));
+    path_ = pattern;
+  }
+  ~ScratchFolder() {
+    std::error_code ignored;
+    if (!path_.empty()) fs::remove_all(path_, ignored);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+// A problem set's problems written as scene files into `folder`: the configuration's
+// scenes, each named by its scenario, its runs numbered from the problem's index times
+// the runs per problem.
+void name_problem_scenes(const std::string& folder, BenchConfig* config) {
+  const MotionBenchMakerSet& set = *config->problem_set;
+  config->scenes = write_problem_scenes(set, folder);
+  std::map<std::string, int> index;  // per scenario
+  for (const MotionBenchMakerSet::Problem& p : set.problems) {
+    config->scene_labels.push_back(p.scenario);
+    config->first_runs.push_back(index[p.scenario]++ * config->runs);
+  }
+}
+
+// A problem whose start or goal collides, as one record per planner (status "invalid",
+// not run): counted, and said, in the summary.
+void add_invalid_records(const BenchConfig& config, std::size_t s, const std::string& reason,
+                         std::vector<BenchRecord>* out) {
+  for (const PlannerChoice& choice : config.planners) {
+    for (int run = 0; run < config.runs; ++run) {
+      BenchRecord record;
+      record.experiment = config.name;
+      record.scene = config.scene_labels[s];
+      record.planner = choice.planner;
+      record.checker = choice.checker;
+      record.run = config.first_runs[s] + run;
+      record.seed = config.seed + static_cast<std::uint64_t>(run);
+      record.status = "invalid";
+      record.note = fs::path(config.scenes[s]).stem().string() + ": " + reason;
+      out->push_back(record);
+    }
+  }
+}
+
+// The problem set's scene files kept in the output folder (problems/).
+void keep_problem_scenes(const std::string& from, const std::string& dir) {
+  const fs::path to = fs::path(dir) / "problems";
+  fs::create_directories(to);
+  for (const auto& entry : fs::directory_iterator(from))
+    fs::copy_file(entry.path(), to / entry.path().filename(), fs::copy_options::overwrite_existing);
+}
+
 std::string csv_text(const std::vector<BenchRecord>& records) {
   std::ostringstream out;
   write_bench_csv_header(out);
@@ -113,6 +185,7 @@ int conclude(const BenchConfig& config, const std::vector<BenchRecord>& records,
   std::ostringstream summary;
   summary << "gplan bench " << config.name << " (" << config.kind << ")\n\n";
   print_summary(summary, groups);
+  if (config.problem_set) print_problem_set_summary(summary, records);
   int failed_paths = 0;
   for (const GroupSummary& g : groups) failed_paths += g.path_failures;
   if (failed_paths) {
@@ -189,7 +262,7 @@ int run_bench(int argc, char** argv) {
   std::vector<gplanner::NamedFile> outputs;
   if (!save.empty()) outputs.push_back({"--save-baseline", save});
   gplanner::check_output_paths(outputs, inputs);
-  const BenchConfig config = load_bench_config(config_file);
+  BenchConfig config = load_bench_config(config_file);
   if (config.kind == "error-time" || config.kind == "broad-phase") {
     for (const char* option : {"baseline", "save-baseline", "report", "jobs"}) {
       if (args.has(option))
@@ -217,6 +290,10 @@ int run_bench(int argc, char** argv) {
 
   const std::string dir =
       args.text("out", "gplan-bench-" + config.name + "-" + timestamp("%Y%m%d-%H%M%S"));
+  // A problem set's problems as scene files, in a scratch folder until the output folder
+  // is made (they are kept there, in problems/).
+  const ScratchFolder generated(config.problem_set ? "gplan-bench-problems" : "");
+  if (config.problem_set) name_problem_scenes(generated.path(), &config);
   for (const auto& scene : config.scenes) inputs.push_back({"a scene of the configuration", scene});
   gplanner::check_output_paths(outputs, inputs);
   check_output_folder(dir);
@@ -228,20 +305,47 @@ int run_bench(int argc, char** argv) {
   // Scenes loaded once, before the workers are forked (they share them).
   const auto start = std::chrono::steady_clock::now();
   std::vector<gplanner::Scene> scenes;
-  for (const std::string& file : config.scenes) {
-    std::cerr << "loading " << file << "\n";
+  std::vector<BenchRecord> invalid;  // a problem set's problems not run
+  BenchConfig valid = config;
+  valid.scenes.clear();
+  valid.scene_labels.clear();
+  valid.first_runs.clear();
+  std::set<std::string> noticed;
+  for (std::size_t s = 0; s < config.scenes.size(); ++s) {
+    const std::string& file = config.scenes[s];
+    if (!config.problem_set) std::cerr << "loading " << file << "\n";
     scenes.push_back(gplanner::load_scene(file));
     for (const std::string& notice : scenes.back().notices)
-      std::cerr << "notice: " << gplanner::terminal_text(notice) << "\n";
+      if (noticed.insert(notice).second)
+        std::cerr << "notice: " << gplanner::terminal_text(notice) << "\n";
     if (config.kind != "queries") {  // planning, and the study's planning curves
       // A start or goal in collision is the scene's error, said once now (exit 2), not
-      // a failed run in every group.
+      // a failed run in every group; a problem set's problem is counted invalid instead.
       gplanner::FclChecker fcl(scenes.back(), /*threads=*/1);
-      gplanner::check_start_and_goal(scenes.back(), &fcl);
+      try {
+        gplanner::check_start_and_goal(scenes.back(), &fcl);
+      } catch (const gplanner::InputError& e) {
+        if (!config.problem_set) throw;
+        scenes.pop_back();
+        add_invalid_records(config, s, e.what(), &invalid);
+        continue;
+      }
+    }
+    valid.scenes.push_back(file);
+    if (s < config.scene_labels.size()) {
+      valid.scene_labels.push_back(config.scene_labels[s]);
+      valid.first_runs.push_back(config.first_runs[s]);
     }
     if (should_stop()) return report_interruption({}, {"--out " + dir});
   }
+  if (config.problem_set) {
+    std::cerr << "loaded " << config.scenes.size() << " problems of " << config.problem_set->folder
+              << ": " << valid.scenes.size() << " valid, " << config.scenes.size() - valid.scenes.size()
+              << " with the start or goal in collision\n";
+  }
+  config = valid;
   make_output_folder(dir);
+  if (config.problem_set) keep_problem_scenes(generated.path(), dir);
   if (config.kind == "error-time")
     return run_error_time_study(config, scenes, dir, !args.flag("no-plots"), should_stop);
   const std::vector<BenchGroup> groups = bench_groups(config);
@@ -251,15 +355,17 @@ int run_bench(int argc, char** argv) {
   const std::string partial = (fs::path(dir) / "results.partial.csv").string();
   std::ofstream partial_csv(partial);
   write_bench_csv_header(partial_csv);
-  const std::vector<BenchRecord> records = run_bench_groups(
+  std::vector<BenchRecord> records = run_bench_groups(
       config, scenes, groups, jobs, std::cerr, should_stop,
       [&](const BenchRecord& record) {
         write_bench_csv_line(partial_csv, record);
         partial_csv.flush();
       },
       (fs::path(dir) / "failed_paths").string());
+  for (const BenchRecord& record : invalid) write_bench_csv_line(partial_csv, record);
   partial_csv.close();
   if (should_stop()) return report_interruption({partial + " (the runs done)"}, {});
+  records.insert(records.end(), invalid.begin(), invalid.end());
   const double total =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -267,22 +373,31 @@ int run_bench(int argc, char** argv) {
   write_config_copy(dir, config_file);
   if (config.kind == "planning") {
     fs::create_directories(fs::path(dir) / "ompl");
-    for (std::size_t s = 0; s < scenes.size(); ++s) {
-      const std::string name = fs::path(config.scenes[s]).stem().string();
+    std::vector<std::string> names;  // the records' scenes (a problem set's scenarios)
+    for (const BenchRecord& r : records)
+      if (std::find(names.begin(), names.end(), r.scene) == names.end()) names.push_back(r.scene);
+    for (const std::string& name : names) {
       std::vector<BenchRecord> scene_records;
-      for (const BenchRecord& r : records)
-        if (r.scene == name) scene_records.push_back(r);
+      for (const BenchRecord& r : records)  // a problem not run has no place in OMPL's log
+        if (r.scene == name && r.status != "invalid") scene_records.push_back(r);
       OmplLogExperiment experiment;
       experiment.host = ompl_host_name();
       experiment.cpu_info = ompl_cpu_info();
       experiment.name = config.name + "." + name;  // one word: the reader keeps the last
-      experiment.setup = "gplan bench " + config.file + "\nscene " + config.scenes[s];
+      experiment.setup = "gplan bench " + config.file + "\nscene " + name;
       experiment.date = started;
       experiment.seed = config.seed;
       experiment.time_limit_s = config.time_limit_s;
       experiment.memory_limit_mb = 0;
       experiment.total_seconds = total;
       experiment.runs_per_planner = config.runs;
+      if (config.problem_set && !scene_records.empty()) {  // its problems x config.runs
+        int runs = 0;
+        for (const BenchRecord& r : scene_records)
+          runs += r.planner == scene_records.front().planner &&
+                  r.checker == scene_records.front().checker;
+        experiment.runs_per_planner = runs;
+      }
       write_ompl_log_file((fs::path(dir) / "ompl" / (name + ".log")).string(), experiment,
                           scene_records);
     }

@@ -117,7 +117,7 @@ BenchConfig load_bench_config(const std::string& file) {
                                 "runs",       "time_limit", "group_budget", "recheck_refinement",
                                 "simplify",   "tables",     "checkers",     "queries",
                                 "milestones", "neighbors",  "repeat",       "seed",
-                                "tolerances"};
+                                "tolerances", "motionbenchmaker"};
   keys.insert(error_time_keys().begin(), error_time_keys().end());
   keys.insert(broad_phase_keys().begin(), broad_phase_keys().end());
   in.expect_map(root, "", keys);
@@ -137,10 +137,19 @@ BenchConfig load_bench_config(const std::string& file) {
             "does not apply to kind: broad-phase (its spheres are generated); remove it");
   }
 
-  const YAML::Node scenes =
-      broad_phase ? YAML::Node(YAML::NodeType::Sequence) : in.required(root, "", "scenes");
+  // A planning configuration names scenes, or a MotionBenchMaker problem set.
+  const bool problem_set = config.kind == "planning" && root["motionbenchmaker"];
+  if (root["motionbenchmaker"] && config.kind != "planning")
+    in.fail(root["motionbenchmaker"], "motionbenchmaker", "applies to kind: planning only; remove it");
+  if (problem_set && root["scenes"])
+    in.fail(root["scenes"], "scenes", "give scenes or motionbenchmaker, not both");
+  if (problem_set)
+    config.problem_set = read_motionbenchmaker(in, root["motionbenchmaker"], file);
+  const YAML::Node scenes = broad_phase || problem_set ? YAML::Node(YAML::NodeType::Sequence)
+                                                       : in.required(root, "", "scenes");
   for (const std::string& scene :
-       broad_phase ? std::vector<std::string>{} : names(in, scenes, "scenes", {}, "scene files")) {
+       broad_phase || problem_set ? std::vector<std::string>{}
+                                  : names(in, scenes, "scenes", {}, "scene files")) {
     const std::size_t i = config.scenes.size();
     const std::string resolved =
         (std::filesystem::path(file).parent_path() / scene).lexically_normal().string();

@@ -3,11 +3,13 @@
 // the tolerances of the verdict against a baseline. See benchmarks/README.md for the keys.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "harness/broad_phase_config.h"
 #include "harness/error_time_config.h"
+#include "harness/motionbenchmaker.h"
 
 namespace gplan {
 
@@ -42,7 +44,13 @@ struct BenchConfig {
   std::string name;                 // the experiment's name
   std::string kind;                 // "planning", "queries", "error-time" or "broad-phase"
   std::vector<std::string> scenes;  // scene files, resolved against the config's folder (none
-                                    // for broad-phase)
+                                    // for broad-phase; a problem set's once written)
+  // planning on a MotionBenchMaker problem set instead of scenes (motionbenchmaker.h)
+  std::optional<MotionBenchMakerSet> problem_set;
+  // Per scene, the name its records carry and the run number of its first run (by
+  // default the file's stem and 0; a problem set's: the scenario and the problem's index).
+  std::vector<std::string> scene_labels;
+  std::vector<int> first_runs;
   // planning
   std::vector<PlannerChoice> planners;
   int runs = 10;

@@ -52,7 +52,8 @@ void send(int fd, char type, const std::string& payload) {
   const auto notice = [fd](const std::string& text) { send(fd, 'N', text); };
   try {
     if (config.kind == "planning") {
-      run_planning_group(scene, group.scene_name, config, group.choice, host_threads, emit,
+      run_planning_group(scene, group.scene_name, group.first_run, config, group.choice,
+                         host_threads, emit,
                          should_stop, notice, failed_paths_dir);
     } else {
       QueryTableOptions options;
@@ -117,7 +118,10 @@ std::vector<BenchGroup> bench_groups(const BenchConfig& config) {
   for (std::size_t s = 0; s < config.scenes.size(); ++s) {
     BenchGroup base;
     base.scene = s;
-    base.scene_name = std::filesystem::path(config.scenes[s]).stem().string();
+    base.scene_name = s < config.scene_labels.size()
+                          ? config.scene_labels[s]
+                          : std::filesystem::path(config.scenes[s]).stem().string();
+    base.first_run = s < config.first_runs.size() ? config.first_runs[s] : 0;
     if (config.kind == "planning") {
       for (const PlannerChoice& choice : config.planners) {
         BenchGroup group = base;
@@ -225,7 +229,7 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
     record.scene = group.scene_name;
     record.planner = config.kind == "planning" ? group.choice.planner : group.table;
     record.checker = config.kind == "planning" ? group.choice.checker : group.checker;
-    record.run = worker.records;
+    record.run = group.first_run + worker.records;
     record.seed = config.seed + static_cast<std::uint64_t>(worker.records);
     record.status = "crash";
     if (!worker.killed.empty()) {

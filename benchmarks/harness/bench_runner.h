@@ -31,6 +31,7 @@ struct BenchGroup {
   PlannerChoice choice;  // planning
   std::string table;     // queries: collision-queries or local-planning
   std::string checker;   // queries
+  int first_run = 0;     // the run number of its first run (a problem set's problem index)
   int runs = 0;          // runs planned (planning: config.runs; queries: config.repeat)
   bool alone = true;     // runs with no other group beside it
   bool gpu = false;      // one planning thread and the GPU (at most one such at a time)

@@ -5,9 +5,11 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <set>
 #include <ostream>
 #include <sstream>
 
+#include "gplanner/planner/output/text_escaping.h"
 #include "harness/query_runs.h"
 
 namespace gplan {
@@ -66,6 +68,7 @@ std::vector<GroupSummary> summarize(const std::vector<BenchRecord>& records) {
     std::vector<double> times, lengths, check_shares;
     std::vector<std::pair<double, bool>> timed;  // time, found no path
     for (const BenchRecord* r : members[g.key()]) {
+      if (r->status == "invalid") continue;  // a problem set's problem not run
       ++g.runs;
       if (r->status == "crash" || r->status == "error") ++g.crashes;
       if (!r->path_check.empty()) ++g.paths_checked;
@@ -174,6 +177,72 @@ void print_summary(std::ostream& out, const std::vector<GroupSummary>& groups) {
       out << std::string(total - 2, '-') << "\n";
     }
   }
+}
+
+void print_problem_set_summary(std::ostream& out, const std::vector<BenchRecord>& records) {
+  struct Tally {
+    int total = 0, invalid = 0, solved = 0;
+    std::vector<std::pair<double, bool>> times;  // valid runs: time, found no path
+  };
+  std::vector<std::string> order;
+  std::map<std::string, Tally> tallies;
+  for (const BenchRecord& r : records) {
+    const std::string key = r.scene + " " + r.planner + "@" + r.checker;
+    if (!tallies.count(key)) order.push_back(key);
+    Tally& t = tallies[key];
+    ++t.total;
+    if (r.status == "invalid") {
+      ++t.invalid;
+      continue;
+    }
+    if (r.solved) ++t.solved;
+    if (std::isfinite(r.time_s)) t.times.push_back({r.time_s, !r.solved});
+  }
+  // A quantile of the valid runs' times (nearest rank), '>' where it is a run that found
+  // no path (a lower bound).
+  auto quantile_text = [](std::vector<std::pair<double, bool>> times, double q) {
+    if (times.empty()) return std::string("-");
+    std::sort(times.begin(), times.end());
+    const std::size_t i = std::min(times.size() - 1,
+                                   static_cast<std::size_t>(std::ceil(q * times.size())) - (q > 0));
+    return (times[i].second ? "> " : "") + seconds(times[i].first);
+  };
+  std::vector<std::vector<std::string>> rows;
+  rows.push_back({"scenario", "planner@checker", "solved / valid / total", "success", "median",
+                  "p95"});
+  for (const std::string& key : order) {
+    const Tally& t = tallies.at(key);
+    const int valid = t.total - t.invalid;
+    const std::size_t space = key.find(' ');
+    std::ostringstream counts, success;
+    counts << t.solved << " / " << valid << " / " << t.total;
+    if (valid > 0) {
+      success << std::fixed << std::setprecision(1) << 100.0 * t.solved / valid << " %";
+    } else {
+      success << "-";
+    }
+    rows.push_back({key.substr(0, space), key.substr(space + 1), counts.str(), success.str(),
+                    quantile_text(t.times, 0.5), quantile_text(t.times, 0.95)});
+  }
+  out << "\nproblems (median and p95 over the valid problems' runs, a run without a path at its "
+         "full time):\n";
+  std::vector<std::size_t> widths(rows[0].size(), 0);
+  for (const auto& row : rows)
+    for (std::size_t c = 0; c < row.size(); ++c) widths[c] = std::max(widths[c], row[c].size());
+  for (const auto& row : rows) {
+    std::string line;
+    for (std::size_t c = 0; c < row.size(); ++c)
+      line += row[c] + std::string(c + 1 < row.size() ? widths[c] - row[c].size() + 2 : 0, ' ');
+    out << line << "\n";
+  }
+  std::size_t invalid = 0;
+  for (const BenchRecord& r : records) invalid += r.status == "invalid";
+  if (invalid == 0) return;
+  out << "invalid (start or goal in collision, not run):\n";
+  std::set<std::string> said;
+  for (const BenchRecord& r : records)
+    if (r.status == "invalid" && said.insert(r.note).second)
+      out << "  " << gplanner::terminal_text(r.note) << "\n";
 }
 
 }  // namespace gplan

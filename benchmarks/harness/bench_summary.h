@@ -45,6 +45,11 @@ std::vector<GroupSummary> summarize(const std::vector<BenchRecord>& records);
 // summary.txt.
 void print_summary(std::ostream& out, const std::vector<GroupSummary>& groups);
 
+// A problem set's table (motionbenchmaker.h): per scenario and planner@checker, problems
+// solved / valid / total (VAMP's form), success over the valid ones, the median and p95
+// time; then the invalid problems and why.
+void print_problem_set_summary(std::ostream& out, const std::vector<BenchRecord>& records);
+
 // The median of `values` (NaN when empty).
 double median_of(std::vector<double> values);
 

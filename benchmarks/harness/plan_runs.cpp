@@ -183,7 +183,7 @@ BenchRecord run_ours(const gplanner::Scene& scene, const BenchConfig& config,
 }  // namespace
 
 void run_planning_group(const gplanner::Scene& scene, const std::string& scene_name,
-                        const BenchConfig& config, const PlannerChoice& choice, int host_threads,
+                        int first_run, const BenchConfig& config, const PlannerChoice& choice, int host_threads,
                         const std::function<void(const BenchRecord&)>& emit,
                         const std::function<bool()>& should_stop,
                         const std::function<void(const std::string&)>& notice,
@@ -219,10 +219,10 @@ void run_planning_group(const gplanner::Scene& scene, const std::string& scene_n
     reset_peak_memory();
     BenchRecord record;
     try {
-      record = choice.ours() ? run_ours(scene, config, choice, seed, run, checker.get(),
-                                        neighbors.get(), should_stop, keep)
-                             : run_ompl(scene, config, choice, seed, run, checker.get(),
-                                        should_stop, keep);
+      record = choice.ours() ? run_ours(scene, config, choice, seed, first_run + run,
+                                        checker.get(), neighbors.get(), should_stop, keep)
+                             : run_ompl(scene, config, choice, seed, first_run + run,
+                                        checker.get(), should_stop, keep);
     } catch (const std::exception& e) {
       record = BenchRecord{};
       record.status = "error";
@@ -234,7 +234,7 @@ void run_planning_group(const gplanner::Scene& scene, const std::string& scene_n
     record.scene = scene_name;
     record.planner = choice.planner;
     record.checker = checker->backend();
-    record.run = run;
+    record.run = first_run + run;
     record.seed = seed;
     spent += std::isfinite(record.time_s) ? record.time_s : config.time_limit_s;
     emit(record);

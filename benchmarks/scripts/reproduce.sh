@@ -55,6 +55,14 @@
 #                 spheres, 1,000 checked pairs, 1,000 to 10,000
 #                 obstacle boxes): masked pair tests against
 #                 sort-and-sweep (gplanner_link_broad_phase)
+#      mbm-agreement  gplan check --compare fcl, gpu backend,       mbm_agreement.jsonl
+#                 100,000 configurations, on the first MotionBenchMaker
+#                 Panda problem of every scenario (issue 31)
+#      mbm        gplan-bench on the MotionBenchMaker Panda set      mbm/
+#                 (benchmarks/config/motionbenchmaker_panda.yaml's
+#                 planners; MBM_SCENARIOS="a b": those scenario folders
+#                 only, MBM_FIRST=N: the first N problems of each;
+#                 MBM_OUT: the folder's name, default mbm)
 #    Every call also writes OUT_DIR/machine.txt (GPU, driver, CPU, commit, date,
 #    tables). Progress goes to stderr. The exit status is 1 when a program failed (the
 #    other tables still run). Where one command may run at most 10 minutes, split the
@@ -91,6 +99,7 @@ if [ "${1:-}" = --bundle ]; then
   # gpu-bundle takes its options before the programs.
   ../shared/tools/gpu-bundle -d ../shared/data/moveit_resources_pr2_description \
     -d ../shared/data/pr2_moveit_config -d ../shared/data/example-robot-data \
+    -d ../shared/data/motionbenchmaker \
     "${programs[@]/#/$build/}"
   if commit=$(git rev-parse --short HEAD 2>/dev/null); then
     git diff --quiet HEAD -- || commit="$commit-dirty"
@@ -107,7 +116,7 @@ mkdir -p "$1"
 out=$(cd "$1" && pwd)
 shift
 all=(gpu-tests peak collision agreement knn time-limit hostile seed-tables regression plan
-     error-time error-time-articulated call-sizes ompl-plugin broad-phase)
+     error-time error-time-articulated call-sizes ompl-plugin broad-phase mbm-agreement mbm)
 tables=("$@")
 [ ${#tables[@]} -gt 0 ] || tables=("${all[@]}")
 for t in "${tables[@]}"; do
@@ -250,7 +259,7 @@ for t in "${tables[@]}"; do
       # from the reference's (MISMATCH lines in the log). Plots: gplan-bench is run again
       # with matplotlib, or plot_broad_phase.py on results.csv.
       status=0
-      "$run" "$bin/gplan" bench benchmarks/config/broad_phase.yaml -o "$out/broad_phase" \
+      "$run" "$bin/gplan-bench" benchmarks/config/broad_phase.yaml -o "$out/broad_phase" \
         --no-plots || status=$?
       if [ "$status" -ne 0 ]; then
         say "broad-phase: exit $status (3: a method's pairs differed from the reference's)"
@@ -258,6 +267,34 @@ for t in "${tables[@]}"; do
       fi
       "$run" "$bin/gplanner_link_broad_phase" > "$out/link_broad_phase.jsonl" \
         || failed+=("$t (link_broad_phase)")
+      ;;
+    mbm-agreement)
+      panda=$data/motionbenchmaker/panda
+      scratch=$(mktemp -d)
+      for dir in "$panda"/problems/*; do
+        s=$(basename "$dir")
+        printf 'name: %s.0001\nrobot:\n  urdf: %s\n  srdf: %s\n  packages: {meshes: %s}\nmoveit:\n  scene: %s\n  request: %s\n' \
+          "$s" "$panda/robot/panda.urdf" "$panda/robot/panda.srdf" "$panda/robot/meshes" \
+          "$dir/scene0001.yaml" "$dir/request0001.yaml" > "$scratch/$s.yaml"
+        "$run" "$bin/gplan" check "$scratch/$s.yaml" --n 100000 --seed 1 --backend gpu \
+          --compare fcl --json 2> /dev/null | tail -n 1 >> "$out/mbm_agreement.jsonl" \
+          || failed+=("$t ($s)")
+      done
+      rm -rf "$scratch"
+      ;;
+    mbm)
+      panda=$data/motionbenchmaker/panda
+      config=$out/${MBM_OUT:-mbm}.yaml
+      {
+        sed -n '/^name:/,/^motionbenchmaker:/p' benchmarks/config/motionbenchmaker_panda.yaml
+        echo "  problems: $panda/problems"
+        [ -z "${MBM_FIRST:-}" ] || echo "  first: $MBM_FIRST"
+        [ -z "${MBM_SCENARIOS:-}" ] || echo "  scenarios: [$(echo $MBM_SCENARIOS | sed 's/ /, /g')]"
+        echo "  robot: {urdf: $panda/robot/panda.urdf, srdf: $panda/robot/panda.srdf, packages: {meshes: $panda/robot/meshes}}"
+        sed -n '/^planners:/,$p' benchmarks/config/motionbenchmaker_panda.yaml
+      } > "$config"
+      bench_config "$config" "$out/${MBM_OUT:-mbm}" --jobs $((cores > 5 ? cores - 4 : 1)) \
+        || failed+=("$t")
       ;;
   esac
 done

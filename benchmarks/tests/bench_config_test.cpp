@@ -33,7 +33,8 @@ TEST(BenchConfig, EveryShippedConfigurationLoads) {
       continue;
     const BenchConfig config = load_bench_config(entry.path().string());
     if (config.kind != "broad-phase" && !config.problem_set) EXPECT_FALSE(config.scenes.empty());
-    if (config.problem_set) EXPECT_EQ(config.problem_set->problems.size(), 700u);
+    if (config.problem_set)  // 7 scenarios x 100 problems, or the first of each
+      EXPECT_TRUE(config.problem_set->problems.size() == 700u || config.problem_set->problems.size() == 7u);
     for (const std::string& scene : config.scenes) EXPECT_TRUE(fs::is_regular_file(scene)) << scene;
     ++loaded;
   }

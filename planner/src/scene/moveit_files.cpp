@@ -5,6 +5,8 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <set>
 #include <sstream>
@@ -365,9 +367,211 @@ std::vector<MoveItJointValue> read_joint_state(const YamlReader& in, const YAML:
   return values;
 }
 
+// MoveIt's .scene text (PlanningScene::saveGeometryToStream): a name line; per object
+// "* ID", in the newer format its pose (x y z, then qx qy qz qw), its shape count, per
+// shape its type and dimensions (box x y z, sphere r, cylinder r length, mesh V T then
+// the vertices and triangles), its pose relative to the object's and a colour; in the
+// newer format the subframes; "." ends the scene.
+class SceneText {
+ public:
+  SceneText(std::string path, const std::string& text) : path_(std::move(path)) {
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) lines_.push_back(line);
+  }
+  const std::string& path() const { return path_; }
+  // The line of the next word (the last line at the end of the file).
+  int line() {
+    skip_space();
+    return static_cast<int>(std::min(row_ + 1, std::max<std::size_t>(lines_.size(), 1)));
+  }
+  bool at_end() {
+    skip_space();
+    return row_ >= lines_.size();
+  }
+  // The next whitespace-separated word; an InputError naming `key` at the end of the file.
+  std::string word(const std::string& key) {
+    skip_space();
+    if (row_ >= lines_.size()) fail(key, "the file ends here; it is cut short");
+    const std::string& text = lines_[row_];
+    const std::size_t end = text.find_first_of(" \t\r", column_);
+    const std::string w = text.substr(column_, end == std::string::npos ? std::string::npos : end - column_);
+    column_ = end == std::string::npos ? text.size() : end;
+    return w;
+  }
+  double number(const std::string& key) {
+    const std::string w = word(key);
+    char* end = nullptr;
+    const double v = std::strtod(w.c_str(), &end);
+    if (w.empty() || *end != '\0' || !std::isfinite(v))
+      fail(key, "expected a finite number, found '" + w + "'");
+    return v;
+  }
+  std::size_t count(const std::string& key, std::size_t most) {
+    const std::string w = word(key);
+    if (w.empty() || w.size() > 12 || w.find_first_not_of("0123456789") != std::string::npos ||
+        std::stoull(w) > most)
+      fail(key, "expected a count from 0 to " + std::to_string(most) + ", found '" + w + "'");
+    return std::stoull(w);
+  }
+  // The rest of the current line, trimmed; the cursor moves to the next line.
+  std::string rest_of_line() {
+    std::string rest = row_ < lines_.size() ? lines_[row_].substr(column_) : "";
+    const std::size_t first = rest.find_first_not_of(" \t\r");
+    const std::size_t last = rest.find_last_not_of(" \t\r");
+    ++row_;
+    column_ = 0;
+    return first == std::string::npos ? "" : rest.substr(first, last - first + 1);
+  }
+  // x y z qx qy qz qw, the quaternion checked as a YAML one is.
+  Eigen::Isometry3d pose(const std::string& key) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    Eigen::Vector3d p;  // read in order: an argument list's order is unspecified
+    for (int k = 0; k < 3; ++k) p[k] = number(key);
+    X.translation() = p;
+    const int at = line();
+    double q[4];
+    for (double& part : q) part = number(key);
+    double largest = 0;
+    for (const double part : q) largest = std::max(largest, std::abs(part));
+    if (largest < 1e-9) throw InputError({path_, at, key}, "zero-length quaternion; give qx qy qz qw with qw = 1 for no rotation");
+    const Eigen::Quaterniond r(q[3] / largest, q[0] / largest, q[1] / largest, q[2] / largest);
+    if (std::abs(r.norm() * largest - 1) > 1e-3) {
+      std::ostringstream problem;
+      problem << "quaternion of length " << r.norm() * largest << ", not 1; give a unit quaternion qx qy qz qw";
+      throw InputError({path_, at, key}, problem.str());
+    }
+    X.linear() = r.normalized().toRotationMatrix();
+    return X;
+  }
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) {
+    throw InputError({path_, line(), key}, problem);
+  }
+  // The line after the first "* ID" line: it holds a pose (spaces) in the newer format.
+  bool newer_format() const {
+    for (std::size_t i = 0; i + 1 < lines_.size(); ++i) {
+      if (!lines_[i].empty() && lines_[i][0] == '*') {
+        const std::string& next = lines_[i + 1];
+        const std::size_t first = next.find_first_not_of(" \t\r");
+        const std::size_t last = next.find_last_not_of(" \t\r");
+        return first != std::string::npos && next.substr(first, last - first + 1).find(' ') != std::string::npos;
+      }
+    }
+    return false;
+  }
+
+ private:
+  void skip_space() {
+    while (row_ < lines_.size()) {
+      const std::size_t at = lines_[row_].find_first_not_of(" \t\r", column_);
+      if (at != std::string::npos) {
+        column_ = at;
+        return;
+      }
+      ++row_;
+      column_ = 0;
+    }
+  }
+  std::string path_;
+  std::vector<std::string> lines_;
+  std::size_t row_ = 0, column_ = 0;
+};
+
+void read_scene_text(const std::string& path, Scene* scene) {
+  SceneText in(path, read_input_file(path, kMoveItSceneFile, {path, 0, ""}));
+  in.rest_of_line();  // the scene's name
+  const bool newer = in.newer_format();
+  std::size_t triangles = 0;
+  while (true) {
+    if (in.at_end()) in.fail("end", "the file ends without the closing '.'; it is cut short");
+    const int marker_line = in.line();
+    const std::string marker = in.word("object");
+    if (marker == ".") return;
+    if (marker != "*") {
+      throw InputError({path, marker_line, "object"},
+                       "expected '* OBJECT_ID' or the closing '.', found '" + marker + "'");
+    }
+    const std::string id = in.rest_of_line();
+    const std::string key = "object '" + id + "'";
+    const Eigen::Isometry3d X_WO = newer ? in.pose(key + " pose") : Eigen::Isometry3d::Identity();
+    const std::size_t shapes = in.count(key + " shape count", 10000);
+    for (std::size_t k = 0; k < shapes; ++k) {
+      const std::string skey = key + " shape " + std::to_string(k);
+      const int type_line = in.line();
+      const std::string type = in.word(skey);
+      Obstacle obstacle;
+      TriangleMesh mesh;
+      obstacle.defined = {path, type_line, skey};
+      auto positive = [&](double v, const char* what) {
+        if (!(v > 0)) throw InputError({path, type_line, skey}, std::string(what) + " must be positive");
+        return v;
+      };
+      if (type == "box") {
+        obstacle.shape = ObstacleShape::kBox;
+        for (int a = 0; a < 3; ++a) obstacle.dimensions[a] = positive(in.number(skey), "a box's side lengths");
+        mesh = make_box(obstacle.dimensions);
+      } else if (type == "sphere") {
+        obstacle.shape = ObstacleShape::kSphere;
+        obstacle.dimensions = Eigen::Vector3d(positive(in.number(skey), "a sphere's radius"), 0, 0);
+        mesh = make_sphere(obstacle.dimensions.x());
+      } else if (type == "cylinder") {  // radius, length
+        obstacle.shape = ObstacleShape::kCylinder;
+        const double radius = positive(in.number(skey), "a cylinder's radius");
+        const double length = positive(in.number(skey), "a cylinder's length");
+        obstacle.dimensions = Eigen::Vector3d(radius, length, 0);
+        mesh = make_cylinder(radius, length);
+      } else if (type == "mesh") {
+        const std::size_t v = in.count(skey + " vertex count", 3 * kMaxMeshTriangles);
+        const std::size_t t = in.count(skey + " triangle count", kMaxMeshTriangles);
+        triangles += t;
+        if (triangles > kMaxSceneTriangles)
+          in.fail(skey, "brings the objects' triangles beyond the " + std::to_string(kMaxSceneTriangles) + " a scene may have");
+        for (std::size_t i = 0; i < v; ++i) {
+          Eigen::Vector3d vertex;
+          for (int k = 0; k < 3; ++k) vertex[k] = in.number(skey + " vertex");
+          mesh.vertices.push_back(vertex);
+        }
+        for (std::size_t i = 0; i < t; ++i) {
+          Eigen::Vector3i corner;
+          for (int c = 0; c < 3; ++c) {
+            const std::size_t index = in.count(skey + " triangle", ~std::size_t(0) >> 1);
+            if (index >= v) in.fail(skey + " triangle", "vertex index " + std::to_string(index) + " is not one of the mesh's " + std::to_string(v) + " vertices (0-based)");
+            corner(c) = static_cast<int>(index);
+          }
+          mesh.triangles.push_back(corner);
+        }
+        if (t == 0) in.fail(skey, "a mesh without a triangle; give at least one");
+      } else if (type == "cone" || type == "plane") {
+        throw InputError({path, type_line, skey}, type + " shapes are not read; give a cone as a mesh, a plane as a thin box");
+      } else {
+        throw InputError({path, type_line, skey}, "'" + type + "' is not a shape; use box, sphere, cylinder or mesh");
+      }
+      const Eigen::Isometry3d X_WP = X_WO * in.pose(skey + " pose");
+      for (int c = 0; c < 4; ++c) in.number(skey + " colour");
+      obstacle.name = shapes == 1 ? id : id + "[" + std::to_string(k) + "]";
+      obstacle.X_SO = X_WP;  // S is W until moved
+      if (obstacle.shape != ObstacleShape::kMesh) obstacle.solid.assign(mesh.triangle_count(), 1);
+      obstacle.mesh_S = transformed(mesh, X_WP);
+      scene->obstacles.push_back(std::move(obstacle));
+      if (scene->obstacles.size() > kMaxObstacles)
+        in.fail(skey, "more than the " + std::to_string(kMaxObstacles) + " obstacles a scene may have");
+    }
+    if (newer) {  // subframes: named poses on the object, nothing to check against
+      const std::size_t subframes = in.count(key + " subframe count", 10000);
+      for (std::size_t k = 0; k < subframes; ++k) {
+        in.word(key + " subframe");
+        in.pose(key + " subframe");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<MoveItJointValue> read_moveit_scene(const std::string& path, Scene* scene) {
+  if (std::filesystem::path(path).extension() == ".scene") {
+    read_scene_text(path, scene);
+    return {};
+  }
   const YAML::Node root = load_checked_yaml(path, kMoveItSceneFile, "");
   const YamlReader in(path);
   try {

@@ -302,6 +302,105 @@ TEST(MoveItFiles, MistakesAreRefusedNamingFileLineAndKey) {
   }
 }
 
+// MoveIt's .scene text (RViz's export), in the newer format (an object pose line) and the
+// older one (none), read as MoveIt reads it: cylinder "radius length", poses
+// "x y z" then "qx qy qz qw", a colour per shape, subframes in the newer format.
+TEST(MoveItFiles, SceneTextInBothFormats) {
+  {
+    MoveItCase c;
+    c.folder.write("world.scene", R"(kitchen
+* table
+0.3 0 0.2
+0 0 0.7071067811865476 0.7071067811865476
+2
+box
+0.2 0.3 0.4
+0.1 0 0
+0 0 0 1
+0 0 0 0
+mesh
+3 1
+0.3 0.3 0.3
+0.4 0.3 0.3
+0.3 0.4 0.3
+0 1 2
+0 0 0
+0 0 0 1
+0.5 0.5 0.5 1
+1
+handle 0 0 0.1 0 0 0 1
+.
+)");
+    c.request = replaced(kRequest, "name: [shoulder]\n    position: [-0.5]",
+                         "name: [shoulder, elbow]\n    position: [-0.5, 0.2]");
+    const std::string file = c.write();
+    c.folder.write("scene.yaml", "name: moveit_arm\nrobot:\n  urdf: arm.urdf\n  srdf: arm.srdf\n"
+                                 "moveit:\n  scene: world.scene\n  request: request.yaml\n");
+    const Scene scene = load_scene(file);
+    ASSERT_EQ(scene.obstacles.size(), 2u);
+    const Obstacle& box = obstacle(scene, "table[0]");
+    EXPECT_EQ(box.shape, ObstacleShape::kBox);
+    EXPECT_TRUE(box.X_SO.translation().isApprox(Eigen::Vector3d(0.3, 0.1, 0.2), 1e-12));
+    const Obstacle& mesh = obstacle(scene, "table[1]");
+    ASSERT_EQ(mesh.mesh_S.triangle_count(), 1u);
+    // The mesh turned a quarter about z with the object and moved to (0.3, 0, 0.2).
+    EXPECT_TRUE(mesh.mesh_S.vertices[0].isApprox(Eigen::Vector3d(0.0, 0.3, 0.5), 1e-12))
+        << mesh.mesh_S.vertices[0].transpose();
+  }
+  {
+    MoveItCase c;
+    c.folder.write("world.scene", "old\n* can\n1\ncylinder\n0.1 0.4\n0 -0.3 0.3\n0 0 0 1\n0 0 0 0\n.\n");
+    c.request = replaced(kRequest, "name: [shoulder]\n    position: [-0.5]",
+                         "name: [shoulder, elbow]\n    position: [-0.5, 0.2]");
+    c.write();
+    const std::string file = c.folder.write(
+        "scene.yaml", "name: moveit_arm\nrobot:\n  urdf: arm.urdf\n  srdf: arm.srdf\n"
+                      "moveit:\n  scene: world.scene\n  request: request.yaml\n");
+    const Scene scene = load_scene(file);
+    ASSERT_EQ(scene.obstacles.size(), 1u);
+    EXPECT_EQ(scene.obstacles[0].name, "can");
+    EXPECT_DOUBLE_EQ(scene.obstacles[0].dimensions.x(), 0.1);  // radius
+    EXPECT_DOUBLE_EQ(scene.obstacles[0].dimensions.y(), 0.4);  // length
+  }
+}
+
+TEST(MoveItFiles, SceneTextMistakesNameTheLine) {
+  struct Case {
+    const char* text;
+    int line;
+    const char* key;
+    const char* says;
+  };
+  const Case cases[] = {
+      {"s\n* a\n1\npyramid\n1 1 1\n", 4, "object 'a' shape 0", "'pyramid' is not a shape"},
+      {"s\n* a\n1\nbox\n0.1 0.1\n", 5, "object 'a' shape 0", "cut short"},
+      {"s\n* a\n1\nbox\n0.1 x 0.1\n", 5, "object 'a' shape 0", "found 'x'"},
+      {"s\n* a\n1\nsphere\n-1\n0 0 0\n0 0 0 1\n0 0 0 0\n.\n", 4, "object 'a' shape 0", "must be positive"},
+      {"s\n* a\n1\nsphere\n0.1\n0 0 0\n0 0 0 0\n0 0 0 0\n.\n", 7, "object 'a' shape 0 pose", "zero-length quaternion"},
+      {"s\n* a\n1\nsphere\n0.1\n0 0 0\n0 0 0 1\n0 0 0 0\n", 8, "end", "closing '.'"},
+      {"s\n* a\n1\nmesh\n3 1\n0 0 0\n1 0 0\n0 1 0\n0 1 3\n", 9, "object 'a' shape 0 triangle", "0-based"},
+      {"s\nx a\n", 2, "object", "expected '* OBJECT_ID'"},
+      {"s\n* a\n1\ncone\n0.1 0.2\n", 4, "object 'a' shape 0", "give a cone as a mesh"},
+  };
+  for (const Case& k : cases) {
+    MoveItCase c;
+    c.folder.write("world.scene", k.text);
+    c.write();
+    const std::string file = c.folder.write(
+        "scene.yaml", "name: moveit_arm\nrobot:\n  urdf: arm.urdf\n  srdf: arm.srdf\n"
+                      "moveit:\n  scene: world.scene\n  request: request.yaml\n");
+    try {
+      load_scene(file);
+      ADD_FAILURE() << "loaded: " << k.text;
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      const std::string where = c.folder.path() + "/world.scene:" + std::to_string(k.line) + ": " + k.key + ": ";
+      EXPECT_EQ(message.rfind(where, 0), 0u) << message << "\nexpected " << where;
+      EXPECT_NE(message.find(k.says), std::string::npos) << message;
+    }
+  }
+}
+
 // The first problem of every MotionBenchMaker Panda scenario: its start, goal and first
 // object against the values in its files (read by hand), every object there.
 TEST(MoveItFiles, MotionBenchMakersFirstProblemOfEveryScenario) {

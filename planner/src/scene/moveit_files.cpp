@@ -391,7 +391,7 @@ class SceneText {
   // The next whitespace-separated word; an InputError naming `key` at the end of the file.
   std::string word(const std::string& key) {
     skip_space();
-    if (row_ >= lines_.size()) fail(key, "the file ends here; it is cut short");
+    if (row_ >= lines_.size()) fail(key, "the file ends here, cut short; give the rest of the scene (export it again)");
     const std::string& text = lines_[row_];
     const std::size_t end = text.find_first_of(" \t\r", column_);
     const std::string w = text.substr(column_, end == std::string::npos ? std::string::npos : end - column_);
@@ -482,7 +482,7 @@ void read_scene_text(const std::string& path, Scene* scene) {
   const bool newer = in.newer_format();
   std::size_t triangles = 0;
   while (true) {
-    if (in.at_end()) in.fail("end", "the file ends without the closing '.'; it is cut short");
+    if (in.at_end()) in.fail("end", "the file ends without the closing '.', cut short; give the rest of the scene (export it again)");
     const int marker_line = in.line();
     const std::string marker = in.word("object");
     if (marker == ".") return;

@@ -164,11 +164,10 @@ void check_batch_fits(std::size_t n, std::size_t width) {
   // The batch, its verdicts and one run's verdicts.
   const double batch_bytes = static_cast<double>(n) * (width * sizeof(float) + 2);
   if (gplanner::fits_in_memory(batch_bytes)) return;
-  throw UsageError("--n " + std::to_string(n) + ": " + std::to_string(width) +
-                   "-float rows need about " + gplanner::memory_text(batch_bytes) +
-                   ", more than half of this machine's " +
-                   gplanner::memory_text(gplanner::physical_memory_bytes()) +
-                   " of memory; give a smaller --n");
+  throw UsageError(
+      "--n " + std::to_string(n) + ": " + std::to_string(width) + "-float rows need about " +
+      gplanner::memory_text(batch_bytes) + ", more than half of this machine's " +
+      gplanner::memory_text(gplanner::physical_memory_bytes()) + " of memory; give a smaller --n");
 }
 
 // The report's description of the scene.
@@ -192,9 +191,9 @@ void describe_scene(const std::string& scene_file, const gplanner::Scene& scene,
 // Checks the batch `repeat` times (the first run pays for allocations a planner makes
 // once) and returns the median time; every run must give the same verdicts. False when
 // interrupted.
-bool check_repeated(gplanner::CollisionChecker* checker, const std::vector<float>& q,
-                    std::size_t n, std::size_t width, std::size_t repeat,
-                    std::vector<std::uint8_t>* verdicts, double* median_s) {
+bool check_repeated(gplanner::CollisionChecker* checker, const std::vector<float>& q, std::size_t n,
+                    std::size_t width, std::size_t repeat, std::vector<std::uint8_t>* verdicts,
+                    double* median_s) {
   std::vector<double> run_s;
   for (std::size_t r = 0; r < repeat; ++r) {
     std::vector<std::uint8_t> run_verdicts(n);
@@ -265,8 +264,9 @@ int run_check(int argc, char** argv) {
   if (request.has_out) outputs.push_back({"--out", request.out});
   std::vector<gplanner::NamedFile> inputs{{"the scene file", request.scene_file}};
   gplanner::check_output_paths(outputs, inputs);
-  const std::vector<std::string> unwritten =
-      outputs.empty() ? std::vector<std::string>{} : std::vector<std::string>{"--out " + request.out};
+  const std::vector<std::string> unwritten = outputs.empty()
+                                                 ? std::vector<std::string>{}
+                                                 : std::vector<std::string>{"--out " + request.out};
 
   const auto load_start = Clock::now();
   const gplanner::Scene scene = gplanner::load_scene(request.scene_file);

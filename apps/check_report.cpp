@@ -39,8 +39,7 @@ std::string CheckReport::text() const {
       << "), loaded in " << std::fixed << std::setprecision(3) << load_s << " s\n"
       << "robot       " << terminal_text(robot_name) << ": " << links << " link"
       << (links == 1 ? "" : "s") << ", " << robot_triangles << " triangles, " << checked_pairs
-      << " checked link pairs; " << base << " base, " << dof << " DOF (" << width
-      << " floats)\n"
+      << " checked link pairs; " << base << " base, " << dof << " DOF (" << width << " floats)\n"
       << "obstacles   " << obstacles << " (" << obstacle_triangles << " triangles; "
       << dropped_obstacle_triangles << " out of the robot's reach dropped)\n"
       << "tolerance   delta = " << std::scientific << std::setprecision(2) << delta << std::fixed
@@ -64,10 +63,10 @@ std::string CheckReport::text() const {
     const gplanner::CheckerComparison& c = compare->comparison;
     out << "compare     " << backend << " vs " << compare->backend << " (" << std::setprecision(4)
         << compare->seconds << " s, " << std::setprecision(1)
-        << (seconds > 0 ? compare->seconds / seconds : 0.0)
-        << "x the time): " << c.disagreements << " disagreements: " << c.missed_collisions
-        << " missed collisions, " << c.extra_within_band << " extra within the band, "
-        << c.extra_outside_band << " outside it";
+        << (seconds > 0 ? compare->seconds / seconds : 0.0) << "x the time): " << c.disagreements
+        << " disagreements: " << c.missed_collisions << " missed collisions, "
+        << c.extra_within_band << " extra within the band, " << c.extra_outside_band
+        << " outside it";
     if (c.extra_within_band + c.extra_outside_band > 0) {
       out << " (largest FCL distance " << std::scientific << std::setprecision(2)
           << c.largest_extra_distance << std::fixed << " m)";

@@ -105,9 +105,8 @@ int run_bench_alias(int argc, char** argv) {
     const std::vector<std::string> words = process_command_line();
     const std::size_t n = static_cast<std::size_t>(argc);
     if (words.size() > n &&
-        std::equal(words.end() - n, words.end(), argv, [](const std::string& a, const char* b) {
-          return a == b;
-        })) {
+        std::equal(words.end() - n, words.end(), argv,
+                   [](const std::string& a, const char* b) { return a == b; })) {
       command.assign(words.begin(), words.end() - n);  // the loader and its options
     }
   }
@@ -120,8 +119,8 @@ int run_bench_alias(int argc, char** argv) {
   std::cout.flush();
   std::cerr.flush();
   ::execv(args[0], args.data());
-  throw std::runtime_error("gplan bench runs gplan-bench, which did not start from " +
-                           bench + " (" + std::strerror(errno) +
+  throw std::runtime_error("gplan bench runs gplan-bench, which did not start from " + bench +
+                           " (" + std::strerror(errno) +
                            "); run gplan-bench from where it is installed");
 }
 

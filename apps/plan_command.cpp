@@ -18,9 +18,9 @@
 #include "gplanner/planner/output/output_paths.h"
 #include "gplanner/planner/output/path_file.h"
 #include "gplanner/planner/output/path_picture.h"
+#include "gplanner/planner/output/roadmap_file.h"
 #include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/planning/neighbor_finder.h"
-#include "gplanner/planner/output/roadmap_file.h"
 #include "gplanner/planner/planning/roadmap.h"
 #include "gplanner/planner/planning/roadmap_planner.h"
 #include "gplanner/planner/planning/scene_metric.h"
@@ -51,7 +51,7 @@ struct PlanRequest {
   std::optional<double> time_limit_s;
   std::optional<std::size_t> milestones;
   std::string out, save, picture;
-  std::optional<std::string> load;  // --load-roadmap FILE
+  std::optional<std::string> load;           // --load-roadmap FILE
   std::vector<gplanner::NamedFile> outputs;  // the output options given
   bool json = false;
 };
@@ -70,8 +70,7 @@ PlanRequest read_plan_request(int argc, char** argv) {
   if (!gplanner::parse_strategy(args.text("planner", "lazyprm"), &r.strategy))
     throw UsageError("--planner: '" + args.text("planner", "") + "' is not one of lazyprm, prm");
   r.backend = args.text("backend", "gpu");
-  r.checker_options.threads =
-      static_cast<int>(args.count("threads", 0, 0, gplanner::kMaxThreads));
+  r.checker_options.threads = static_cast<int>(args.count("threads", 0, 0, gplanner::kMaxThreads));
   if (args.has("traversal") &&
       !gplanner::parse_traversal(args.text("traversal", ""), &r.checker_options.gpu.traversal)) {
     throw UsageError("--traversal: '" + args.text("traversal", "") +
@@ -94,8 +93,7 @@ PlanRequest read_plan_request(int argc, char** argv) {
   if (args.has("load-roadmap")) r.load = args.text("load-roadmap", "");
   r.picture = args.text("picture", "");
   for (const char* option : {"out", "picture", "save-roadmap"}) {
-    if (args.has(option))
-      r.outputs.push_back({std::string("--") + option, args.text(option, "")});
+    if (args.has(option)) r.outputs.push_back({std::string("--") + option, args.text(option, "")});
   }
   if (args.has("seed")) r.seed = args.count("seed", 0, 0, ~0ULL);
   if (args.has("time-limit")) r.time_limit_s = args.positive_number("time-limit", 1);
@@ -196,8 +194,8 @@ int run_plan(int argc, char** argv) {
   std::unique_ptr<gplanner::CollisionChecker> checker;
   try {
     std::string notice;
-    checker = gplanner::make_collision_checker(scene, request.backend, request.checker_options,
-                                               &notice);
+    checker =
+        gplanner::make_collision_checker(scene, request.backend, request.checker_options, &notice);
     if (!notice.empty()) std::cerr << "notice: " << gplanner::terminal_text(notice) << "\n";
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--backend: ") + e.what());
@@ -251,8 +249,7 @@ int run_plan(int argc, char** argv) {
   report.backend = checker->backend();
   report.knn = neighbors->device();
   report.edges = gplanner::edge_checks_name(options.edges);
-  report.certified_path =
-      options.certify_path || options.edges == gplanner::EdgeChecks::kCertified;
+  report.certified_path = options.certify_path || options.edges == gplanner::EdgeChecks::kCertified;
   report.final_check_refinement = options.final_check_refinement;
   report.seed = options.seed;
   report.result = result;

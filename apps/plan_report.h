@@ -15,12 +15,12 @@ namespace gplan {
 struct PlanReport {
   std::string scene_file, scene_name;
   int dof = 0;
-  std::size_t width = 0;  // floats per configuration
-  std::string planner;    // lazyprm, prm
-  std::string backend;    // the checker that ran (gpu, cpu, fcl)
-  std::string knn;        // where the k-NN ran
-  std::string edges;      // sampled, certified
-  bool certified_path = true;   // else re-checked at 1/final_check_refinement
+  std::size_t width = 0;       // floats per configuration
+  std::string planner;         // lazyprm, prm
+  std::string backend;         // the checker that ran (gpu, cpu, fcl)
+  std::string knn;             // where the k-NN ran
+  std::string edges;           // sampled, certified
+  bool certified_path = true;  // else re-checked at 1/final_check_refinement
   int final_check_refinement = 10;
   unsigned long long seed = 0;
   gplanner::PlanResult result;

@@ -42,7 +42,8 @@ MotionBenchMakerSet read_motionbenchmaker(const gplanner::YamlReader& in, const 
   in.expect_map(robot, key + ".robot", {"urdf", "srdf", "packages"});
   set.urdf = absolute(config_file,
                       in.text(in.required(robot, key + ".robot", "urdf"), key + ".robot.urdf"));
-  gplanner::check_input_file(set.urdf, gplanner::kUrdfFile, in.at(robot["urdf"], key + ".robot.urdf"));
+  gplanner::check_input_file(set.urdf, gplanner::kUrdfFile,
+                             in.at(robot["urdf"], key + ".robot.urdf"));
   if (robot["srdf"]) {
     set.srdf = absolute(config_file, in.text(robot["srdf"], key + ".robot.srdf"));
     gplanner::check_input_file(set.srdf, gplanner::kSrdfFile,
@@ -50,7 +51,8 @@ MotionBenchMakerSet read_motionbenchmaker(const gplanner::YamlReader& in, const 
   }
   if (robot["packages"]) {
     const YAML::Node map = robot["packages"];
-    if (!map.IsMap()) in.fail(map, key + ".robot.packages", "expected a map of package name: folder");
+    if (!map.IsMap())
+      in.fail(map, key + ".robot.packages", "expected a map of package name: folder");
     for (const auto& entry : map) {
       const std::string name = entry.first.as<std::string>();
       set.packages[name] =
@@ -88,18 +90,20 @@ MotionBenchMakerSet read_motionbenchmaker(const gplanner::YamlReader& in, const 
     }
     std::sort(numbers.begin(), numbers.end());
     if (numbers.empty()) {
-      in.fail(node["problems"], key + ".problems",
-              "scenario '" + scenario + "' holds no sceneNNNN.yaml; name a MotionBenchMaker folder");
+      in.fail(
+          node["problems"], key + ".problems",
+          "scenario '" + scenario + "' holds no sceneNNNN.yaml; name a MotionBenchMaker folder");
     }
     if (numbers.size() > first) numbers.resize(first);
     for (const std::string& number : numbers) {
       const fs::path dir = fs::path(set.folder) / scenario;
-      MotionBenchMakerSet::Problem p{scenario, number, (dir / ("scene" + number + ".yaml")).string(),
+      MotionBenchMakerSet::Problem p{scenario, number,
+                                     (dir / ("scene" + number + ".yaml")).string(),
                                      (dir / ("request" + number + ".yaml")).string()};
       if (!fs::is_regular_file(p.request, error)) {
-        throw gplanner::InputError({p.scene, 0, "request"},
-                                   "has no request" + number + ".yaml beside it; add it, or "
-                                   "remove the scene");
+        throw gplanner::InputError({p.scene, 0, "request"}, "has no request" + number +
+                                                                ".yaml beside it; add it, or "
+                                                                "remove the scene");
       }
       set.problems.push_back(std::move(p));
     }

@@ -39,8 +39,9 @@ const char* const kArmSrdf = R"(<?xml version="1.0"?>
 
 // A box beside the arm, at x = 0.4 (or, `at_start`, on its base: start and goal collide).
 std::string planning_scene(bool at_start) {
-  return std::string("world:\n  collision_objects:\n    - id: block\n      primitives: [{type: box, "
-                     "dimensions: [0.1, 0.1, 0.1]}]\n      primitive_poses: [{position: [") +
+  return std::string(
+             "world:\n  collision_objects:\n    - id: block\n      primitives: [{type: box, "
+             "dimensions: [0.1, 0.1, 0.1]}]\n      primitive_poses: [{position: [") +
          (at_start ? "0, 0, 0" : "0.4, 0, 0.2") + "], orientation: [0, 0, 0, 1]}]\n";
 }
 
@@ -69,8 +70,8 @@ TEST(ProblemSet, RunsEveryProblemUnderItsScenarioAndCountsTheInvalidOnes) {
       "robot/arm.urdf, srdf: robot/arm.srdf}\nplanners: [ours-lazyprm@cpu]\nruns: 1\n"
       "time_limit: 20\n");
   const std::string out = folder.path() + "/out";
-  const CommandResult run = run_gplan_bench(shell_quoted(config) + " -o " + shell_quoted(out) +
-                                            " --no-plots");
+  const CommandResult run =
+      run_gplan_bench(shell_quoted(config) + " -o " + shell_quoted(out) + " --no-plots");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("loaded 4 problems of"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("3 valid, 1 with the start or goal in collision"), std::string::npos)
@@ -126,9 +127,9 @@ TEST(ProblemSet, MotionBenchMakersPandaFirstProblemOfEveryScenario) {
     EXPECT_NE(r.path_check, "fail") << r.scene << ": " << r.note;
   }
   const std::string summary = read_file(out + "/summary.txt");
-  for (const char* scenario : {"bookshelf_small_panda", "bookshelf_tall_panda",
-                               "bookshelf_thin_panda", "box_panda", "cage_panda",
-                               "table_pick_panda", "table_under_pick_panda"}) {
+  for (const char* scenario :
+       {"bookshelf_small_panda", "bookshelf_tall_panda", "bookshelf_thin_panda", "box_panda",
+        "cage_panda", "table_pick_panda", "table_under_pick_panda"}) {
     EXPECT_NE(summary.find(scenario), std::string::npos) << scenario << "\n" << summary;
   }
 }

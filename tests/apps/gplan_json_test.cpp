@@ -47,15 +47,32 @@ TEST(GplanJson, PlanReportsEveryFieldInOrder) {
       run_gplan("plan '" + scene + "' --backend cpu --seed 3 --time-limit 600 --json");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const Json j = last_json_line(run.output);
-  EXPECT_EQ(keys(j), (std::vector<std::string>{
-                         "scene", "name", "planner", "backend", "knn", "edge_checks",
-                         "path_check", "seed", "solved", "stop_reason", "length",
-                         "length_before_shortcut", "waypoints", "milestones", "edges",
-                         "edges_checked", "states_checked", "samples_checked", "searches",
-                         "edge_batches", "rounds", "seconds", "setup_seconds", "times"}));
-  EXPECT_EQ(keys(j["times"]), (std::vector<std::string>{"sampling", "state_checks", "knn",
-                                                        "search", "edge_checks",
-                                                        "shortcutting"}));
+  EXPECT_EQ(keys(j), (std::vector<std::string>{"scene",
+                                               "name",
+                                               "planner",
+                                               "backend",
+                                               "knn",
+                                               "edge_checks",
+                                               "path_check",
+                                               "seed",
+                                               "solved",
+                                               "stop_reason",
+                                               "length",
+                                               "length_before_shortcut",
+                                               "waypoints",
+                                               "milestones",
+                                               "edges",
+                                               "edges_checked",
+                                               "states_checked",
+                                               "samples_checked",
+                                               "searches",
+                                               "edge_batches",
+                                               "rounds",
+                                               "seconds",
+                                               "setup_seconds",
+                                               "times"}));
+  EXPECT_EQ(keys(j["times"]), (std::vector<std::string>{"sampling", "state_checks", "knn", "search",
+                                                        "edge_checks", "shortcutting"}));
   EXPECT_EQ(j["scene"], scene);
   EXPECT_EQ(j["name"], "piano");
   EXPECT_EQ(j["planner"], "lazyprm");
@@ -82,16 +99,30 @@ TEST(GplanJson, PlanReportsEveryFieldInOrder) {
 TEST(GplanJson, CheckReportsEveryFieldInOrderWithACompare) {
   const ScratchFolder folder;
   const std::string scene = thin_wall_scene(folder);
-  const CommandResult run = run_gplan("check '" + scene +
-                                      "' --n 500 --seed 2 --backend cpu --compare fcl --json");
+  const CommandResult run =
+      run_gplan("check '" + scene + "' --n 500 --seed 2 --backend cpu --compare fcl --json");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const Json j = last_json_line(run.output);
-  EXPECT_EQ(keys(j), (std::vector<std::string>{
-                         "scene", "name", "backend", "n", "seed", "dof", "width", "links",
-                         "robot_triangles", "checked_pairs", "obstacle_triangles",
-                         "dropped_obstacle_triangles", "delta", "collisions",
-                         "collision_fraction", "seconds", "repeat", "queries_per_second",
-                         "straight_line_collides", "compare"}));
+  EXPECT_EQ(keys(j), (std::vector<std::string>{"scene",
+                                               "name",
+                                               "backend",
+                                               "n",
+                                               "seed",
+                                               "dof",
+                                               "width",
+                                               "links",
+                                               "robot_triangles",
+                                               "checked_pairs",
+                                               "obstacle_triangles",
+                                               "dropped_obstacle_triangles",
+                                               "delta",
+                                               "collisions",
+                                               "collision_fraction",
+                                               "seconds",
+                                               "repeat",
+                                               "queries_per_second",
+                                               "straight_line_collides",
+                                               "compare"}));
   EXPECT_EQ(keys(j["compare"]),
             (std::vector<std::string>{"backend", "seconds", "disagreements", "missed_collisions",
                                       "extra_within_band", "extra_outside_band"}));

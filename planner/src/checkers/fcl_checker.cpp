@@ -216,8 +216,7 @@ struct FclChecker::Impl {
     if (!containment) return false;
     const SolidsView view = solids.view();
     for (int l : links_with_geometry) {
-      if (either_inside(view, environment_solids, link_solids[l], w.X_WL[l], margin))
-        return true;
+      if (either_inside(view, environment_solids, link_solids[l], w.X_WL[l], margin)) return true;
     }
     for (const auto& [a, b] : checked_pairs) {
       if (either_inside(view, link_solids[a], link_solids[b], w.X_WL[a].inverse() * w.X_WL[b],

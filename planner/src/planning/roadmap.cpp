@@ -9,7 +9,6 @@
 #include <sstream>
 #include <stdexcept>
 
-
 namespace gplanner {
 
 std::uint32_t Roadmap::add_vertex(const float* q) {

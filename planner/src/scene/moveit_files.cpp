@@ -22,14 +22,20 @@ namespace {
 
 // The fields of the messages read, as ROS writes them to YAML; others are refused (a
 // misspelt key would drop what it holds).
-const std::set<std::string> kPlanningSceneKeys = {
-    "name",      "robot_state",   "robot_model_name", "fixed_frame_transforms",
-    "allowed_collision_matrix",   "link_padding",     "link_scale",
-    "object_colors",              "world",            "is_diff"};
+const std::set<std::string> kPlanningSceneKeys = {"name",
+                                                  "robot_state",
+                                                  "robot_model_name",
+                                                  "fixed_frame_transforms",
+                                                  "allowed_collision_matrix",
+                                                  "link_padding",
+                                                  "link_scale",
+                                                  "object_colors",
+                                                  "world",
+                                                  "is_diff"};
 const std::set<std::string> kCollisionObjectKeys = {
-    "header",        "pose",   "id",         "type",           "primitives",
-    "primitive_poses", "meshes", "mesh_poses", "planes",         "plane_poses",
-    "subframe_names", "subframe_poses", "operation"};
+    "header",          "pose",           "id",         "type",   "primitives",
+    "primitive_poses", "meshes",         "mesh_poses", "planes", "plane_poses",
+    "subframe_names",  "subframe_poses", "operation"};
 
 // A vector of three as ROS writes a Point or Vector3: [x, y, z] or {x:, y:, z:}.
 Eigen::Vector3d read_xyz(const YamlReader& in, const YAML::Node& node, const std::string& key) {
@@ -44,8 +50,7 @@ Eigen::Vector3d read_xyz(const YamlReader& in, const YAML::Node& node, const std
 
 // A quaternion as ROS writes one: [x, y, z, w] or {x:, y:, z:, w:} (w last, unlike a
 // gplanner scene's quat_wxyz).
-Eigen::Quaterniond read_xyzw(const YamlReader& in, const YAML::Node& node,
-                             const std::string& key) {
+Eigen::Quaterniond read_xyzw(const YamlReader& in, const YAML::Node& node, const std::string& key) {
   std::vector<double> v;
   if (node.IsMap()) {
     in.expect_map(node, key, {"x", "y", "z", "w"});
@@ -97,8 +102,10 @@ void check_frame(const YamlReader& in, const YAML::Node& header, const std::stri
                              scene.space.X_SB.isApprox(Eigen::Isometry3d::Identity());
   if (id.empty() || id == "world" || id == "map" || (id == root && root_at_world)) return;
   in.fail(frame, key + ".frame_id",
-          "frame '" + id + "' is not resolved here: give the object in the world frame "
-          "(frame_id: world, or the robot's root '" + root + "' where the robot sits at the origin)");
+          "frame '" + id +
+              "' is not resolved here: give the object in the world frame "
+              "(frame_id: world, or the robot's root '" +
+              root + "' where the robot sits at the origin)");
 }
 
 // One primitive of a collision object as an obstacle: MoveIt's SolidPrimitive (type by
@@ -171,7 +178,8 @@ Obstacle mesh_obstacle(const YamlReader& in, const YAML::Node& node, const std::
   }
   TriangleMesh mesh;
   for (std::size_t i = 0; i < vertices.size(); ++i)
-    mesh.vertices.push_back(read_xyz(in, vertices[i], key + ".vertices[" + std::to_string(i) + "]"));
+    mesh.vertices.push_back(
+        read_xyz(in, vertices[i], key + ".vertices[" + std::to_string(i) + "]"));
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     const std::string where = key + ".triangles[" + std::to_string(i) + "]";
     YAML::Node t = triangles[i];
@@ -191,7 +199,8 @@ Obstacle mesh_obstacle(const YamlReader& in, const YAML::Node& node, const std::
     }
     mesh.triangles.push_back(corner);
   }
-  if (mesh.triangles.empty()) in.fail(triangles, key + ".triangles", "no triangle; give at least one");
+  if (mesh.triangles.empty())
+    in.fail(triangles, key + ".triangles", "no triangle; give at least one");
   Obstacle obstacle;
   obstacle.name = "mesh";
   obstacle.defined = in.at(node, key);
@@ -205,7 +214,8 @@ void read_collision_objects(const YamlReader& in, const YAML::Node& world, Scene
   in.expect_map(world, "world", {"collision_objects", "octomap"});
   if (world["octomap"] && world["octomap"].IsMap() && world["octomap"]["octomap"] &&
       world["octomap"]["octomap"]["data"] && world["octomap"]["octomap"]["data"].size() > 0) {
-    in.fail(world["octomap"], "world.octomap", "octomaps are not read; give the obstacles as objects");
+    in.fail(world["octomap"], "world.octomap",
+            "octomaps are not read; give the obstacles as objects");
   }
   const YAML::Node objects = world["collision_objects"];
   if (!objects) return;
@@ -352,9 +362,9 @@ std::vector<MoveItJointValue> read_joint_state(const YamlReader& in, const YAML:
       const std::string tkey = key + ".multi_dof_joint_state.transforms[" + std::to_string(i) + "]";
       const YAML::Node t = transforms[i];
       in.expect_map(t, tkey, {"translation", "rotation"});
-      const Eigen::Vector3d p =
-          t["translation"] ? read_xyz(in, t["translation"], tkey + ".translation")
-                           : Eigen::Vector3d::Zero();
+      const Eigen::Vector3d p = t["translation"]
+                                    ? read_xyz(in, t["translation"], tkey + ".translation")
+                                    : Eigen::Vector3d::Zero();
       const Eigen::Quaterniond q = t["rotation"] ? read_xyzw(in, t["rotation"], tkey + ".rotation")
                                                  : Eigen::Quaterniond::Identity();
       if (p.norm() > 1e-12 || q.angularDistance(Eigen::Quaterniond::Identity()) > 1e-12) {
@@ -391,10 +401,12 @@ class SceneText {
   // The next whitespace-separated word; an InputError naming `key` at the end of the file.
   std::string word(const std::string& key) {
     skip_space();
-    if (row_ >= lines_.size()) fail(key, "the file ends here, cut short; give the rest of the scene (export it again)");
+    if (row_ >= lines_.size())
+      fail(key, "the file ends here, cut short; give the rest of the scene (export it again)");
     const std::string& text = lines_[row_];
     const std::size_t end = text.find_first_of(" \t\r", column_);
-    const std::string w = text.substr(column_, end == std::string::npos ? std::string::npos : end - column_);
+    const std::string w =
+        text.substr(column_, end == std::string::npos ? std::string::npos : end - column_);
     column_ = end == std::string::npos ? text.size() : end;
     return w;
   }
@@ -433,11 +445,14 @@ class SceneText {
     for (double& part : q) part = number(key);
     double largest = 0;
     for (const double part : q) largest = std::max(largest, std::abs(part));
-    if (largest < 1e-9) throw InputError({path_, at, key}, "zero-length quaternion; give qx qy qz qw with qw = 1 for no rotation");
+    if (largest < 1e-9)
+      throw InputError({path_, at, key},
+                       "zero-length quaternion; give qx qy qz qw with qw = 1 for no rotation");
     const Eigen::Quaterniond r(q[3] / largest, q[0] / largest, q[1] / largest, q[2] / largest);
     if (std::abs(r.norm() * largest - 1) > 1e-3) {
       std::ostringstream problem;
-      problem << "quaternion of length " << r.norm() * largest << ", not 1; give a unit quaternion qx qy qz qw";
+      problem << "quaternion of length " << r.norm() * largest
+              << ", not 1; give a unit quaternion qx qy qz qw";
       throw InputError({path_, at, key}, problem.str());
     }
     X.linear() = r.normalized().toRotationMatrix();
@@ -453,7 +468,8 @@ class SceneText {
         const std::string& next = lines_[i + 1];
         const std::size_t first = next.find_first_not_of(" \t\r");
         const std::size_t last = next.find_last_not_of(" \t\r");
-        return first != std::string::npos && next.substr(first, last - first + 1).find(' ') != std::string::npos;
+        return first != std::string::npos &&
+               next.substr(first, last - first + 1).find(' ') != std::string::npos;
       }
     }
     return false;
@@ -482,7 +498,10 @@ void read_scene_text(const std::string& path, Scene* scene) {
   const bool newer = in.newer_format();
   std::size_t triangles = 0;
   while (true) {
-    if (in.at_end()) in.fail("end", "the file ends without the closing '.', cut short; give the rest of the scene (export it again)");
+    if (in.at_end())
+      in.fail("end",
+              "the file ends without the closing '.', cut short; give the rest of the scene "
+              "(export it again)");
     const int marker_line = in.line();
     const std::string marker = in.word("object");
     if (marker == ".") return;
@@ -502,12 +521,14 @@ void read_scene_text(const std::string& path, Scene* scene) {
       TriangleMesh mesh;
       obstacle.defined = {path, type_line, skey};
       auto positive = [&](double v, const char* what) {
-        if (!(v > 0)) throw InputError({path, type_line, skey}, std::string(what) + " must be positive");
+        if (!(v > 0))
+          throw InputError({path, type_line, skey}, std::string(what) + " must be positive");
         return v;
       };
       if (type == "box") {
         obstacle.shape = ObstacleShape::kBox;
-        for (int a = 0; a < 3; ++a) obstacle.dimensions[a] = positive(in.number(skey), "a box's side lengths");
+        for (int a = 0; a < 3; ++a)
+          obstacle.dimensions[a] = positive(in.number(skey), "a box's side lengths");
         mesh = make_box(obstacle.dimensions);
       } else if (type == "sphere") {
         obstacle.shape = ObstacleShape::kSphere;
@@ -524,7 +545,8 @@ void read_scene_text(const std::string& path, Scene* scene) {
         const std::size_t t = in.count(skey + " triangle count", kMaxMeshTriangles);
         triangles += t;
         if (triangles > kMaxSceneTriangles)
-          in.fail(skey, "brings the objects' triangles beyond the " + std::to_string(kMaxSceneTriangles) + " a scene may have");
+          in.fail(skey, "brings the objects' triangles beyond the " +
+                            std::to_string(kMaxSceneTriangles) + " a scene may have");
         for (std::size_t i = 0; i < v; ++i) {
           Eigen::Vector3d vertex;
           for (int k = 0; k < 3; ++k) vertex[k] = in.number(skey + " vertex");
@@ -534,16 +556,22 @@ void read_scene_text(const std::string& path, Scene* scene) {
           Eigen::Vector3i corner;
           for (int c = 0; c < 3; ++c) {
             const std::size_t index = in.count(skey + " triangle", ~std::size_t(0) >> 1);
-            if (index >= v) in.fail(skey + " triangle", "vertex index " + std::to_string(index) + " is not one of the mesh's " + std::to_string(v) + " vertices (0-based)");
+            if (index >= v)
+              in.fail(skey + " triangle", "vertex index " + std::to_string(index) +
+                                              " is not one of the mesh's " + std::to_string(v) +
+                                              " vertices (0-based)");
             corner(c) = static_cast<int>(index);
           }
           mesh.triangles.push_back(corner);
         }
         if (t == 0) in.fail(skey, "a mesh without a triangle; give at least one");
       } else if (type == "cone" || type == "plane") {
-        throw InputError({path, type_line, skey}, type + " shapes are not read; give a cone as a mesh, a plane as a thin box");
+        throw InputError(
+            {path, type_line, skey},
+            type + " shapes are not read; give a cone as a mesh, a plane as a thin box");
       } else {
-        throw InputError({path, type_line, skey}, "'" + type + "' is not a shape; use box, sphere, cylinder or mesh");
+        throw InputError({path, type_line, skey},
+                         "'" + type + "' is not a shape; use box, sphere, cylinder or mesh");
       }
       const Eigen::Isometry3d X_WP = X_WO * in.pose(skey + " pose");
       for (int c = 0; c < 4; ++c) in.number(skey + " colour");
@@ -553,7 +581,8 @@ void read_scene_text(const std::string& path, Scene* scene) {
       obstacle.mesh_S = transformed(mesh, X_WP);
       scene->obstacles.push_back(std::move(obstacle));
       if (scene->obstacles.size() > kMaxObstacles)
-        in.fail(skey, "more than the " + std::to_string(kMaxObstacles) + " obstacles a scene may have");
+        in.fail(skey,
+                "more than the " + std::to_string(kMaxObstacles) + " obstacles a scene may have");
     }
     if (newer) {  // subframes: named poses on the object, nothing to check against
       const std::size_t subframes = in.count(key + " subframe count", 10000);
@@ -579,8 +608,9 @@ std::vector<MoveItJointValue> read_moveit_scene(const std::string& path, Scene* 
     read_collision_objects(in, root["world"], scene);
     read_allowed_collisions(in, root["allowed_collision_matrix"], scene);
     if (root["link_padding"] && root["link_padding"].size() > 0) {
-      scene->notices.push_back(path + ": link_padding is not applied: gplanner checks the "
-                                      "links as modelled, within its tolerance band");
+      scene->notices.push_back(path +
+                               ": link_padding is not applied: gplanner checks the "
+                               "links as modelled, within its tolerance band");
     }
     return read_joint_state(in, root["robot_state"], "robot_state");
   } catch (const YAML::Exception& e) {
@@ -610,8 +640,9 @@ MoveItRequest read_moveit_request(const std::string& path) {
     }
     const YAML::Node goals = in.required(root, "", "goal_constraints");
     if (!goals.IsSequence() || goals.size() != 1) {
-      in.fail(goals, "goal_constraints",
-              "give exactly one goal (a list of one Constraints); gplanner plans to one joint goal");
+      in.fail(
+          goals, "goal_constraints",
+          "give exactly one goal (a list of one Constraints); gplanner plans to one joint goal");
     }
     const YAML::Node goal = goals[0];
     const std::string gkey = "goal_constraints[0]";
@@ -632,8 +663,8 @@ MoveItRequest read_moveit_request(const std::string& path) {
     for (std::size_t i = 0; i < joints.size(); ++i) {
       const std::string jkey = gkey + ".joint_constraints[" + std::to_string(i) + "]";
       const YAML::Node c = joints[i];
-      in.expect_map(c, jkey, {"joint_name", "position", "tolerance_above", "tolerance_below",
-                              "weight"});
+      in.expect_map(c, jkey,
+                    {"joint_name", "position", "tolerance_above", "tolerance_below", "weight"});
       const YAML::Node position = in.required(c, jkey, "position");
       request.goal.push_back({in.text(in.required(c, jkey, "joint_name"), jkey + ".joint_name"),
                               in.number(position, jkey + ".position"),

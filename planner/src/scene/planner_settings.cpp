@@ -23,11 +23,11 @@ struct Setting {
   const char* what;
 };
 
-#define GPLANNER_SETTING(key, member, ...)                                            \
-  Setting {                                                                           \
-    key, [](const PlannerSettings& s) { return static_cast<double>(s.member); },      \
+#define GPLANNER_SETTING(key, member, ...)                                                     \
+  Setting {                                                                                    \
+    key, [](const PlannerSettings& s) { return static_cast<double>(s.member); },               \
         [](PlannerSettings* s, double v) { s->member = static_cast<decltype(s->member)>(v); }, \
-        __VA_ARGS__                                                                   \
+        __VA_ARGS__                                                                            \
   }
 
 // Every setting, in the order config/planner.yaml gives them (the order values are
@@ -37,10 +37,10 @@ const Setting kSettings[] = {
                      "must be a whole number from 0 to 9007199254740992 (2^53)"),
     GPLANNER_SETTING("time_limit_s", time_limit_s, 0, 1e9, true, false,
                      "must be a positive number of seconds"),
-    GPLANNER_SETTING("distance_weights.position", distance_weights.position, 0, 1e9, false,
-                     false, "must be 0 or more"),
-    GPLANNER_SETTING("distance_weights.rotation", distance_weights.rotation, 0, 1e9, false,
-                     false, "must be 0 or more"),
+    GPLANNER_SETTING("distance_weights.position", distance_weights.position, 0, 1e9, false, false,
+                     "must be 0 or more"),
+    GPLANNER_SETTING("distance_weights.rotation", distance_weights.rotation, 0, 1e9, false, false,
+                     "must be 0 or more"),
     GPLANNER_SETTING("distance_weights.joint", distance_weights.joint, 0, 1e9, false, false,
                      "must be 0 or more"),
     GPLANNER_SETTING("delta_fraction", delta_fraction, 0, 1e-5, true, false,
@@ -78,15 +78,14 @@ const Setting* find_setting(const std::string& key) {
 }
 
 bool in_range(const Setting& s, double v) {
-  return (s.low_open ? v > s.low : v >= s.low) && v <= s.high &&
-         (!s.whole || v == std::floor(v));
+  return (s.low_open ? v > s.low : v >= s.low) && v <= s.high && (!s.whole || v == std::floor(v));
 }
 
 // Walks a map of settings (nested maps joined with dots), handing each leaf's key and
 // node to `leaf`; `key` is the path of `node` ("" at the top).
-void for_each_leaf(const YAML::Node& node, const std::string& key,
-                   const std::function<void(const std::string&, const YAML::Node&,
-                                            const YAML::Node&)>& leaf) {
+void for_each_leaf(
+    const YAML::Node& node, const std::string& key,
+    const std::function<void(const std::string&, const YAML::Node&, const YAML::Node&)>& leaf) {
   for (const auto& entry : node) {
     const std::string name = YamlReader::join(key, entry.first.as<std::string>());
     if (entry.second.IsMap()) {
@@ -111,9 +110,9 @@ const PlannerSettings& built_in_planner_settings() {
                     const Setting* s = find_setting(key);
                     const double v = in.number(value, key);
                     if (s == nullptr || !in_range(*s, v))
-                      throw std::logic_error("config/planner.yaml (built in): " + key +
-                                             (s ? std::string(": ") + s->what
-                                                : std::string(": not a setting")));
+                      throw std::logic_error(
+                          "config/planner.yaml (built in): " + key +
+                          (s ? std::string(": ") + s->what : std::string(": not a setting")));
                     s->set(&settings, v);
                     ++given;
                   });

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
-#include <optional>
 #include <cmath>
 #include <filesystem>
 #include <functional>
 #include <iomanip>
+#include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -20,10 +20,10 @@
 #include "gplanner/planner/scene/scene.h"
 #include "gplanner/planner/scene/scene_collision_model.h"
 #include "gplanner/planner/scene/urdf_loader.h"
-#include "moveit_files.h"
-#include "planner_settings_reader.h"
 #include "gplanner/planner/scene/yaml_reader.h"
 #include "gplanner/planner/scene/yaml_structure.h"
+#include "moveit_files.h"
+#include "planner_settings_reader.h"
 
 namespace gplanner {
 namespace {
@@ -153,10 +153,12 @@ void read_robot(const YamlReader& in, const YAML::Node& node, const MoveItReques
   if (!node["planned_joints"] && request != nullptr) {
     // The joints of the request's planning group, from the SRDF, as MoveIt plans them.
     if (srdf_path.empty()) {
-      in.fail(node, key, "the motion plan request plans group '" + request->group +
-                             "', which an SRDF defines: add srdf: (or list planned_joints)");
+      in.fail(node, key,
+              "the motion plan request plans group '" + request->group +
+                  "', which an SRDF defines: add srdf: (or list planned_joints)");
     }
-    for (const int j : srdf_group_joints(robot, srdf_path, request->group, request->group_defined)) {
+    for (const int j :
+         srdf_group_joints(robot, srdf_path, request->group, request->group_defined)) {
       space.planned_joints.push_back(j);
       space.lower.push_back(robot.joints[j].lower);
       space.upper.push_back(robot.joints[j].upper);
@@ -539,13 +541,15 @@ std::map<std::string, MoveItJointValue> apply_moveit_joint_values(
       }
       const Joint& joint = robot.joints[j];
       if (!joint.is_single_dof() || joint.mimic_joint >= 0) continue;
-      if (!std::isfinite(v.value)) throw InputError(v.where, "joint '" + v.name + "': not a finite value");
+      if (!std::isfinite(v.value))
+        throw InputError(v.where, "joint '" + v.name + "': not a finite value");
       if (std::find(space.planned_joints.begin(), space.planned_joints.end(), j) !=
           space.planned_joints.end()) {
         planned[v.name] = v;
         continue;
       }
-      if (joint.type != JointType::kContinuous && (v.value < joint.lower || v.value > joint.upper)) {
+      if (joint.type != JointType::kContinuous &&
+          (v.value < joint.lower || v.value > joint.upper)) {
         std::ostringstream problem;
         problem << "joint '" << v.name << "' at " << v.value << " is outside its limits ["
                 << joint.lower << ", " << joint.upper << "]; give a value within them";
@@ -577,7 +581,8 @@ std::pair<YAML::Node, YAML::Node> moveit_start_and_goal(
   }
   auto check = [&](const MoveItJointValue& v, int j) {
     const Joint& joint = robot.joints[j];
-    if (!std::isfinite(v.value)) throw InputError(v.where, "joint '" + v.name + "': not a finite value");
+    if (!std::isfinite(v.value))
+      throw InputError(v.where, "joint '" + v.name + "': not a finite value");
     if (joint.type != JointType::kContinuous && (v.value < joint.lower || v.value > joint.upper)) {
       std::ostringstream problem;
       problem << "joint '" << v.name << "' at " << v.value << " is outside its limits ["

@@ -687,8 +687,8 @@ int apply_srdf(RobotModel* robot, const std::string& srdf_path,
       }
       ends[k] = robot->find_link(name);
       if (ends[k] < 0) {
-        unknown_links.push_back(std::string(name) + " (line " +
-                                std::to_string(e->GetLineNum()) + ")");
+        unknown_links.push_back(std::string(name) + " (line " + std::to_string(e->GetLineNum()) +
+                                ")");
       }
     }
     // A pair naming a link the URDF lacks disables nothing: srdfdom skips it, warning.
@@ -704,7 +704,8 @@ int apply_srdf(RobotModel* robot, const std::string& srdf_path,
       list += " and " + std::to_string(unknown_links.size() - 10) + " more";
     notices->push_back(srdf_path + ": " + std::to_string(unknown_links.size()) +
                        " disable_collisions link name(s) that URDF '" + robot->source_file +
-                       "' does not have: " + list + "; those pairs are skipped, as srdfdom "
+                       "' does not have: " + list +
+                       "; those pairs are skipped, as srdfdom "
                        "skips them");
   }
   robot->disabled_pairs.assign(pairs.begin(), pairs.end());
@@ -763,8 +764,8 @@ void collect_group_joints(const RobotModel& robot, const tinyxml2::XMLElement* r
           is_virtual = is_virtual || (vname && name == vname);
         }
         if (!is_virtual)
-          throw InputError(where, "names joint '" + name + "', which URDF '" +
-                                      robot.source_file + "' does not have; fix the name");
+          throw InputError(where, "names joint '" + name + "', which URDF '" + robot.source_file +
+                                      "' does not have; fix the name");
       }
     } else if (tag == "link") {
       const int l = link_of(attribute("name"));
@@ -785,7 +786,8 @@ void collect_group_joints(const RobotModel& robot, const tinyxml2::XMLElement* r
     } else if (tag == "group") {
       const std::string name = attribute("name");
       const tinyxml2::XMLElement* sub = find_group(root, name);
-      if (sub == nullptr) throw InputError(where, "names group '" + name + "', which the SRDF lacks");
+      if (sub == nullptr)
+        throw InputError(where, "names group '" + name + "', which the SRDF lacks");
       collect_group_joints(robot, root, sub, srdf_path, depth + 1, joints);
     }
   }
@@ -808,7 +810,8 @@ std::vector<int> srdf_group_joints(const RobotModel& robot, const std::string& s
     std::string names;
     for (const tinyxml2::XMLElement* e = root ? root->FirstChildElement("group") : nullptr; e;
          e = e->NextSiblingElement("group")) {
-      if (e->Attribute("name")) names += (names.empty() ? "" : ", ") + std::string(e->Attribute("name"));
+      if (e->Attribute("name"))
+        names += (names.empty() ? "" : ", ") + std::string(e->Attribute("name"));
     }
     throw InputError(referenced_from, "SRDF '" + srdf_path + "' has no group '" + group +
                                           "'; use one of its groups (" +

@@ -286,8 +286,7 @@ TEST(OmplConventions, TimeLimitKept) {
 // "valid segment fraction").
 TEST(OmplConventions, ResolutionAndMotionCountsAsOmpls) {
   Problem p("pr2_base_arm.yaml");
-  EXPECT_DOUBLE_EQ(p.si->getStateValidityCheckingResolution(),
-                   p.scene.planner.edge_resolution);
+  EXPECT_DOUBLE_EQ(p.si->getStateValidityCheckingResolution(), p.scene.planner.edge_resolution);
   auto planner = p.planner<Prm>(kSmall);
   EXPECT_DOUBLE_EQ(planner->options().local.resolution_fraction,
                    p.si->getStateValidityCheckingResolution());

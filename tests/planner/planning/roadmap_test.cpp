@@ -1,8 +1,8 @@
 // Roadmaps: edges without duplicates, and files that come back whole for their own
 // scene and are refused, with a clear reason, for another scene or when damaged.
 
-#include "gplanner/planner/output/roadmap_file.h"
 #include "gplanner/planner/planning/roadmap.h"
+#include "gplanner/planner/output/roadmap_file.h"
 
 #include <gtest/gtest.h>
 

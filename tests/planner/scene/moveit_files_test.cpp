@@ -224,14 +224,16 @@ TEST(MoveItFiles, MistakesAreRefusedNamingFileLineAndKey) {
   const std::string objects = "world.collision_objects";
   {
     MoveItCase c;  // a zero quaternion
-    c.planning_scene = replaced(kPlanningScene, "orientation: [0, 0, 0.7071067811865476, 0.7071067811865476]",
-                                "orientation: [0, 0, 0, 0]");
+    c.planning_scene =
+        replaced(kPlanningScene, "orientation: [0, 0, 0.7071067811865476, 0.7071067811865476]",
+                 "orientation: [0, 0, 0, 0]");
     expect_refused(c, "world.yaml", 18, objects + "[0].pose.orientation", "zero-length quaternion");
   }
   {
     MoveItCase c;  // far from unit length
-    c.planning_scene = replaced(kPlanningScene, "orientation: [0, 0, 0.7071067811865476, 0.7071067811865476]",
-                                "orientation: [0, 0, 1, 1]");
+    c.planning_scene =
+        replaced(kPlanningScene, "orientation: [0, 0, 0.7071067811865476, 0.7071067811865476]",
+                 "orientation: [0, 0, 1, 1]");
     expect_refused(c, "world.yaml", 18, objects + "[0].pose.orientation", "not 1");
   }
   {
@@ -248,21 +250,28 @@ TEST(MoveItFiles, MistakesAreRefusedNamingFileLineAndKey) {
   {
     MoveItCase c;  // a box of two dimensions
     c.planning_scene = replaced(kPlanningScene, "[0.2, 0.3, 0.4]", "[0.2, 0.3]");
-    expect_refused(c, "world.yaml", 21, objects + "[0].primitives[0].dimensions", "list of 3 numbers");
+    expect_refused(c, "world.yaml", 21, objects + "[0].primitives[0].dimensions",
+                   "list of 3 numbers");
   }
   {
     MoveItCase c;  // a negative radius
-    c.planning_scene = replaced(kPlanningScene, "{type: 2, dimensions: [0.1]}", "{type: 2, dimensions: [-0.1]}");
-    expect_refused(c, "world.yaml", 27, objects + "[1].primitives[0].dimensions", "must be positive");
+    c.planning_scene =
+        replaced(kPlanningScene, "{type: 2, dimensions: [0.1]}", "{type: 2, dimensions: [-0.1]}");
+    expect_refused(c, "world.yaml", 27, objects + "[1].primitives[0].dimensions",
+                   "must be positive");
   }
   {
     MoveItCase c;  // a mesh triangle naming a vertex it lacks
-    c.planning_scene = replaced(kPlanningScene, "vertex_indices: [0, 1, 2]", "vertex_indices: [0, 1, 3]");
+    c.planning_scene =
+        replaced(kPlanningScene, "vertex_indices: [0, 1, 2]", "vertex_indices: [0, 1, 3]");
     expect_refused(c, "world.yaml", 38, objects + "[3].meshes[0].triangles[0]", "0-based");
   }
   {
     MoveItCase c;  // fewer poses than primitives
-    c.planning_scene = replaced(kPlanningScene, "      primitive_poses:\n        - {position: [-0.3, -0.3, 0.3], orientation: [0, 0, 0, 1]}\n", "");
+    c.planning_scene = replaced(kPlanningScene,
+                                "      primitive_poses:\n        - {position: [-0.3, -0.3, 0.3], "
+                                "orientation: [0, 0, 0, 1]}\n",
+                                "");
     expect_refused(c, "world.yaml", 25, objects + "[1].primitive_poses", "one pose per entry");
   }
   {
@@ -278,22 +287,26 @@ TEST(MoveItFiles, MistakesAreRefusedNamingFileLineAndKey) {
   {
     MoveItCase c;  // a group the SRDF lacks
     c.request = replaced(kRequest, "group_name: arm", "group_name: legs");
-    expect_refused(c, "request.yaml", 1, "group_name", "has no group 'legs'; use one of its groups (arm, hand, everything)");
+    expect_refused(c, "request.yaml", 1, "group_name",
+                   "has no group 'legs'; use one of its groups (arm, hand, everything)");
   }
   {
     MoveItCase c;  // a pose goal
     c.request = std::string(kRequest) + "    position_constraints: [{link_name: lower}]\n";
-    expect_refused(c, "request.yaml", 11, "goal_constraints[0].position_constraints", "not a joint goal");
+    expect_refused(c, "request.yaml", 11, "goal_constraints[0].position_constraints",
+                   "not a joint goal");
   }
   {
     MoveItCase c;  // a joint of the group left free
     c.request = replaced(kRequest, "      - {joint_name: elbow, position: -0.3}\n", "");
-    expect_refused(c, "request.yaml", 0, "goal_constraints[0].joint_constraints", "leaves joint 'elbow'");
+    expect_refused(c, "request.yaml", 0, "goal_constraints[0].joint_constraints",
+                   "leaves joint 'elbow'");
   }
   {
     MoveItCase c;  // a goal beyond the joint's limits
     c.request = replaced(kRequest, "position: -0.3", "position: -3");
-    expect_refused(c, "request.yaml", 10, "goal_constraints[0].joint_constraints[1].position", "outside its limits [-2, 2]");
+    expect_refused(c, "request.yaml", 10, "goal_constraints[0].joint_constraints[1].position",
+                   "outside its limits [-2, 2]");
   }
   {
     MoveItCase c;  // start: beside a request
@@ -334,8 +347,9 @@ handle 0 0 0.1 0 0 0 1
     c.request = replaced(kRequest, "name: [shoulder]\n    position: [-0.5]",
                          "name: [shoulder, elbow]\n    position: [-0.5, 0.2]");
     const std::string file = c.write();
-    c.folder.write("scene.yaml", "name: moveit_arm\nrobot:\n  urdf: arm.urdf\n  srdf: arm.srdf\n"
-                                 "moveit:\n  scene: world.scene\n  request: request.yaml\n");
+    c.folder.write("scene.yaml",
+                   "name: moveit_arm\nrobot:\n  urdf: arm.urdf\n  srdf: arm.srdf\n"
+                   "moveit:\n  scene: world.scene\n  request: request.yaml\n");
     const Scene scene = load_scene(file);
     ASSERT_EQ(scene.obstacles.size(), 2u);
     const Obstacle& box = obstacle(scene, "table[0]");
@@ -349,13 +363,15 @@ handle 0 0 0.1 0 0 0 1
   }
   {
     MoveItCase c;
-    c.folder.write("world.scene", "old\n* can\n1\ncylinder\n0.1 0.4\n0 -0.3 0.3\n0 0 0 1\n0 0 0 0\n.\n");
+    c.folder.write("world.scene",
+                   "old\n* can\n1\ncylinder\n0.1 0.4\n0 -0.3 0.3\n0 0 0 1\n0 0 0 0\n.\n");
     c.request = replaced(kRequest, "name: [shoulder]\n    position: [-0.5]",
                          "name: [shoulder, elbow]\n    position: [-0.5, 0.2]");
     c.write();
-    const std::string file = c.folder.write(
-        "scene.yaml", "name: moveit_arm\nrobot:\n  urdf: arm.urdf\n  srdf: arm.srdf\n"
-                      "moveit:\n  scene: world.scene\n  request: request.yaml\n");
+    const std::string file =
+        c.folder.write("scene.yaml",
+                       "name: moveit_arm\nrobot:\n  urdf: arm.urdf\n  srdf: arm.srdf\n"
+                       "moveit:\n  scene: world.scene\n  request: request.yaml\n");
     const Scene scene = load_scene(file);
     ASSERT_EQ(scene.obstacles.size(), 1u);
     EXPECT_EQ(scene.obstacles[0].name, "can");
@@ -375,10 +391,13 @@ TEST(MoveItFiles, SceneTextMistakesNameTheLine) {
       {"s\n* a\n1\npyramid\n1 1 1\n", 4, "object 'a' shape 0", "'pyramid' is not a shape"},
       {"s\n* a\n1\nbox\n0.1 0.1\n", 5, "object 'a' shape 0", "cut short"},
       {"s\n* a\n1\nbox\n0.1 x 0.1\n", 5, "object 'a' shape 0", "found 'x'"},
-      {"s\n* a\n1\nsphere\n-1\n0 0 0\n0 0 0 1\n0 0 0 0\n.\n", 4, "object 'a' shape 0", "must be positive"},
-      {"s\n* a\n1\nsphere\n0.1\n0 0 0\n0 0 0 0\n0 0 0 0\n.\n", 7, "object 'a' shape 0 pose", "zero-length quaternion"},
+      {"s\n* a\n1\nsphere\n-1\n0 0 0\n0 0 0 1\n0 0 0 0\n.\n", 4, "object 'a' shape 0",
+       "must be positive"},
+      {"s\n* a\n1\nsphere\n0.1\n0 0 0\n0 0 0 0\n0 0 0 0\n.\n", 7, "object 'a' shape 0 pose",
+       "zero-length quaternion"},
       {"s\n* a\n1\nsphere\n0.1\n0 0 0\n0 0 0 1\n0 0 0 0\n", 8, "end", "closing '.'"},
-      {"s\n* a\n1\nmesh\n3 1\n0 0 0\n1 0 0\n0 1 0\n0 1 3\n", 9, "object 'a' shape 0 triangle", "0-based"},
+      {"s\n* a\n1\nmesh\n3 1\n0 0 0\n1 0 0\n0 1 0\n0 1 3\n", 9, "object 'a' shape 0 triangle",
+       "0-based"},
       {"s\nx a\n", 2, "object", "expected '* OBJECT_ID'"},
       {"s\n* a\n1\ncone\n0.1 0.2\n", 4, "object 'a' shape 0", "give a cone as a mesh"},
   };
@@ -386,15 +405,17 @@ TEST(MoveItFiles, SceneTextMistakesNameTheLine) {
     MoveItCase c;
     c.folder.write("world.scene", k.text);
     c.write();
-    const std::string file = c.folder.write(
-        "scene.yaml", "name: moveit_arm\nrobot:\n  urdf: arm.urdf\n  srdf: arm.srdf\n"
-                      "moveit:\n  scene: world.scene\n  request: request.yaml\n");
+    const std::string file =
+        c.folder.write("scene.yaml",
+                       "name: moveit_arm\nrobot:\n  urdf: arm.urdf\n  srdf: arm.srdf\n"
+                       "moveit:\n  scene: world.scene\n  request: request.yaml\n");
     try {
       load_scene(file);
       ADD_FAILURE() << "loaded: " << k.text;
     } catch (const InputError& e) {
       const std::string message = e.what();
-      const std::string where = c.folder.path() + "/world.scene:" + std::to_string(k.line) + ": " + k.key + ": ";
+      const std::string where =
+          c.folder.path() + "/world.scene:" + std::to_string(k.line) + ": " + k.key + ": ";
       EXPECT_EQ(message.rfind(where, 0), 0u) << message << "\nexpected " << where;
       EXPECT_NE(message.find(k.says), std::string::npos) << message;
     }
@@ -418,37 +439,64 @@ TEST(MoveItFiles, MotionBenchMakersFirstProblemOfEveryScenario) {
   };
   const std::vector<float> ready = {0, -0.785f, 0, -2.356f, 0, 1.571f, 0.785f};
   const Problem problems[] = {
-      {"bookshelf_small", 7, "Can1", ObstacleShape::kCylinder,
+      {"bookshelf_small",
+       7,
+       "Can1",
+       ObstacleShape::kCylinder,
        {0.2477726773362563, -1.073506349336661, 0.2979866994332424},
-       {0.8521017127688338, 0, 0, -0.5233762232815127}, ready,
+       {0.8521017127688338, 0, 0, -0.5233762232815127},
+       ready,
        {1.48904932702624f, -0.1466710603206631f, -2.884974659739898f, -2.17455683759071f,
         2.709922823933047f, 2.353209641613885f, 1.06196398075046f}},
-      {"bookshelf_tall", 15, "Can1", ObstacleShape::kCylinder,
+      {"bookshelf_tall",
+       15,
+       "Can1",
+       ObstacleShape::kCylinder,
        {0.4220889726278536, 1.013326674029394, 0.6799999999999999},
-       {0.8474983242662829, 0, 0, 0.5307980692936275}, ready,
+       {0.8474983242662829, 0, 0, 0.5307980692936275},
+       ready,
        {-2.778332700195202f, -0.7589568281648941f, -2.491888262891716f, -2.135540657583325f,
         2.89729990721644f, 2.024767106445084f, 0.4576113800781441f}},
-      {"bookshelf_thin", 21, "Can1", ObstacleShape::kCylinder,
+      {"bookshelf_thin",
+       21,
+       "Can1",
+       ObstacleShape::kCylinder,
        {0.8500652996649785, 0.656977940169887, -0.26},
-       {0.9972531602635496, 0, 0, 0.07406844364750122}, ready,
+       {0.9972531602635496, 0, 0, 0.07406844364750122},
+       ready,
        {0.876050380636148f, 1.08259059555153f, -0.7252369320967396f, -2.222271907174576f,
         -2.875483399624016f, 1.724932084474935f, 1.390785275564202f}},
-      {"box", 7, "Can1", ObstacleShape::kCylinder,
+      {"box",
+       7,
+       "Can1",
+       ObstacleShape::kCylinder,
        {0.5408380884576693, 0.3580155146897772, -0.3762264457751537},
-       {0.9972531602635496, 0, 0, 0.07406844364750122}, ready,
+       {0.9972531602635496, 0, 0, 0.07406844364750122},
+       ready,
        {0.4534448383669427f, 1.7628f, 0.1941262264518609f, -0.8667848896139277f,
         -0.3798524112731043f, 2.606927984171601f, -0.1898611792470702f}},
-      {"cage", 8, "Cube1", ObstacleShape::kBox,
+      {"cage",
+       8,
+       "Cube1",
+       ObstacleShape::kBox,
        {0.7444402652852363, -0.1411031622851692, 0.2599367587044526},
-       {0.999201106504633, 0, 0, -0.03996434360673529}, ready,
+       {0.999201106504633, 0, 0, -0.03996434360673529},
+       ready,
        {-0.5545218656333819f, 0.4202507223196937f, 0.3286814744796756f, -1.977673518937082f,
         2.8973f, 2.341192360593145f, -2.31787312121598f}},
-      {"table_pick", 12, "Can1", ObstacleShape::kCylinder,
+      {"table_pick",
+       12,
+       "Can1",
+       ObstacleShape::kCylinder,
        {0.308907161037877, 0.8398608492910964, 0.2984669621486253},
-       {0.8679342998251661, 0, 0, 0.4966790222940755}, ready,
+       {0.8679342998251661, 0, 0, 0.4966790222940755},
+       ready,
        {-1.451140183264752f, -0.9510103288438848f, 2.419034489081648f, -1.139058262758865f,
         -2.647403722074262f, 2.824576369312635f, 0.8869533207576928f}},
-      {"table_under_pick", 12, "Can1", ObstacleShape::kCylinder,
+      {"table_under_pick",
+       12,
+       "Can1",
+       ObstacleShape::kCylinder,
        {0.5268272843683661, 0.7400179940187637, 0.3616124775462733},
        {0.8792935401845499, 0, 0, 0.4762802433333986},
        {0.259545223334237f, 1.7628f, 1.047662098941416f, -1.227360797299392f, 2.419685742648223f,

@@ -338,15 +338,15 @@ TEST_F(UrdfLoader, MimicJointsDrivenBeyondTheirLimitsLoadWithANotice) {
   };
   EXPECT_EQ(error_of(with("1")), "");
   EXPECT_TRUE(notices_.empty());
-  for (const auto& [multiplier, range] : {std::pair<std::string, std::string>{"3", "[0, 0.12]"},
-                                          {"-1", "[-0.04, 0]"}}) {
+  for (const auto& [multiplier, range] :
+       {std::pair<std::string, std::string>{"3", "[0, 0.12]"}, {"-1", "[-0.04, 0]"}}) {
     notices_.clear();
     const std::string text = with(multiplier);
     EXPECT_EQ(error_of(text), "") << multiplier;
     ASSERT_EQ(notices_.size(), 1u) << multiplier;
-    const std::string prefix =
-        path_ + ":" + std::to_string(line_of(text, "<joint name=\"follow\"")) +
-        ": joint 'follow' mimic: ";
+    const std::string prefix = path_ + ":" +
+                               std::to_string(line_of(text, "<joint name=\"follow\"")) +
+                               ": joint 'follow' mimic: ";
     EXPECT_EQ(notices_[0].rfind(prefix, 0), 0u) << notices_[0];
     EXPECT_NE(notices_[0].find("drive it over " + range), std::string::npos) << notices_[0];
     EXPECT_NE(notices_[0].find("beyond its own limits [0, 0.04]"), std::string::npos)

@@ -47,7 +47,6 @@ int apply_srdf(RobotModel* robot, const std::string& srdf_path,
 // Throws InputError naming the SRDF (or `referenced_from` when the group is missing)
 // when the group does not exist or names what the URDF lacks.
 std::vector<int> srdf_group_joints(const RobotModel& robot, const std::string& srdf_path,
-                                   const std::string& group,
-                                   const SourceLocation& referenced_from);
+                                   const std::string& group, const SourceLocation& referenced_from);
 
 }  // namespace gplanner

@@ -530,33 +530,34 @@ std::map<std::string, MoveItJointValue> apply_moveit_joint_values(
     const std::vector<std::vector<MoveItJointValue>>& states, Scene* scene) {
   const RobotModel& robot = scene->robot;
   ConfigurationSpace& space = scene->space;
+  // The last value given for each joint (the start state's over the scene's).
+  std::map<std::string, MoveItJointValue> last;
+  for (const std::vector<MoveItJointValue>& state : states)
+    for (const MoveItJointValue& v : state) last[v.name] = v;
   std::map<std::string, MoveItJointValue> planned;
   std::set<std::string> unknown;
-  for (const std::vector<MoveItJointValue>& state : states) {
-    for (const MoveItJointValue& v : state) {
-      const int j = robot.find_joint(v.name);
-      if (j < 0) {
-        unknown.insert(v.name);
-        continue;
-      }
-      const Joint& joint = robot.joints[j];
-      if (!joint.is_single_dof() || joint.mimic_joint >= 0) continue;
-      if (!std::isfinite(v.value))
-        throw InputError(v.where, "joint '" + v.name + "': not a finite value");
-      if (std::find(space.planned_joints.begin(), space.planned_joints.end(), j) !=
-          space.planned_joints.end()) {
-        planned[v.name] = v;
-        continue;
-      }
-      if (joint.type != JointType::kContinuous &&
-          (v.value < joint.lower || v.value > joint.upper)) {
-        std::ostringstream problem;
-        problem << "joint '" << v.name << "' at " << v.value << " is outside its limits ["
-                << joint.lower << ", " << joint.upper << "]; give a value within them";
-        throw InputError(v.where, problem.str());
-      }
-      space.fixed_positions[j] = v.value;
+  for (const auto& [name, v] : last) {
+    const int j = robot.find_joint(name);
+    if (j < 0) {
+      unknown.insert(name);
+      continue;
     }
+    const Joint& joint = robot.joints[j];
+    if (!joint.is_single_dof() || joint.mimic_joint >= 0) continue;
+    if (!std::isfinite(v.value))
+      throw InputError(v.where, "joint '" + name + "': not a finite value");
+    if (std::find(space.planned_joints.begin(), space.planned_joints.end(), j) !=
+        space.planned_joints.end()) {
+      planned[name] = v;
+      continue;
+    }
+    if (joint.type != JointType::kContinuous && (v.value < joint.lower || v.value > joint.upper)) {
+      std::ostringstream problem;
+      problem << "joint '" << name << "' at " << v.value << " is outside its limits ["
+              << joint.lower << ", " << joint.upper << "]; give a value within them";
+      throw InputError(v.where, problem.str());
+    }
+    space.fixed_positions[j] = v.value;
   }
   if (!unknown.empty()) {
     std::string list;

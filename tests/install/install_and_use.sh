@@ -36,7 +36,8 @@ env -u LD_LIBRARY_PATH "$prefix/bin/gplan" plan "$scene" --backend cpu --time-li
 cmake -S "$here/downstream" -B "$work/build" -DCMAKE_PREFIX_PATH="$prefix" \
       -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
 cmake --build "$work/build" -j 2 > "$work/build.log"
-LD_LIBRARY_PATH="$libdir" "$work/build/downstream" "$scene"
+# It runs with no library path set: CMake's build RUNPATH names the installed library.
+env -u LD_LIBRARY_PATH "$work/build/downstream" "$scene"
 # pkg-config: the same program built with its flags alone.
 export PKG_CONFIG_PATH="$libdir/pkgconfig"
 libs=$(pkg-config --libs gplanner)
@@ -45,4 +46,11 @@ test "$(pkg-config --modversion gplanner)" = "$version"
 # shellcheck disable=SC2046  # the flags are words
 c++ -std=c++17 -O1 "$here/downstream/main.cpp" -o "$work/downstream_pkg_config" \
     $(pkg-config --cflags gplanner) $libs
-LD_LIBRARY_PATH="$libdir" "$work/downstream_pkg_config" "$scene"
+# It runs with no library path set: pkg-config's flags give it a RUNPATH.
+env -u LD_LIBRARY_PATH "$work/downstream_pkg_config" "$scene"
+# The header paths of 0.1.0 still compile, each saying it is deprecated.
+# shellcheck disable=SC2046
+c++ -std=c++17 -fsyntax-only "$here/downstream/old_paths.cpp" $(pkg-config --cflags gplanner) \
+    2> "$work/old_paths.log" || { cat "$work/old_paths.log"; echo "0.1.0's header paths fail"; exit 1; }
+test "$(grep -c "is deprecated (gplanner 0.2.0)" "$work/old_paths.log")" -ge 29 ||
+  { cat "$work/old_paths.log"; echo "a forwarding header says nothing"; exit 1; }

@@ -1,5 +1,7 @@
 #include "gplanner/planner/ompl/motion_validator.h"
 
+#include <stdexcept>
+
 #include <ompl/base/SpaceInformation.h>
 
 #include <algorithm>
@@ -11,6 +13,17 @@
 
 namespace gplanner::ompl_adapters {
 
+namespace {
+
+// The checker a motion validator is made with, checked first (its members use it).
+CollisionChecker* required(CollisionChecker* checker) {
+  if (checker == nullptr)
+    throw std::invalid_argument("MotionValidator: no collision checker (null)");
+  return checker;
+}
+
+}  // namespace
+
 MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
                                  CollisionChecker* checker)
     : MotionValidator(si, scene, checker, EdgeChecks::kSampled) {}
@@ -19,23 +32,27 @@ MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, cons
                                  CollisionChecker* checker, const LocalPlannerOptions& options)
     : ompl::base::MotionValidator(si),
       scene_(scene),
-      checker_(checker),
+      checker_(required(checker)),
       local_(scene, checker, options),
       host_local_(scene, checker->host_checker(), options),
       follows_space_resolution_(false),
-      certifier_(scene, checker) {}
+      certifier_(scene, checker) {
+  require_scene_state_space(scene, si, "MotionValidator");
+}
 
 MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
                                  CollisionChecker* checker, EdgeChecks edges,
                                  const CertifiedMotionOptions& certified)
     : ompl::base::MotionValidator(si),
       scene_(scene),
-      checker_(checker),
+      checker_(required(checker)),
       local_(scene, checker, plan_options(scene).local),
       host_local_(scene, checker->host_checker(), plan_options(scene).local),
       edges_(edges),
       follows_space_resolution_(!(plan_options(scene).local.max_displacement > 0)),
-      certifier_(scene, checker, certified) {}
+      certifier_(scene, checker, certified) {
+  require_scene_state_space(scene, si, "MotionValidator");
+}
 
 int MotionValidator::segments(const ompl::base::State* s1, const ompl::base::State* s2,
                               const float* a, const float* b) const {

@@ -1,5 +1,8 @@
 #include "gplanner/planner/ompl/state_space.h"
 
+#include <stdexcept>
+#include <string>
+
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
@@ -81,6 +84,40 @@ ob::StateSpacePtr make_state_space(const Scene& scene) {
   }
   result->setLongestValidSegmentFraction(scene.planner.edge_resolution);
   return result;
+}
+
+namespace {
+
+// A state space's layout: its kind and dimension, then its subspaces' (one level down, as
+// make_state_space builds them).
+std::string layout(const ob::StateSpace& space) {
+  std::string text = std::to_string(space.getType()) + ":" + std::to_string(space.getDimension());
+  if (space.isCompound()) {
+    const auto* compound = space.as<ob::CompoundStateSpace>();
+    text += "(";
+    for (unsigned int i = 0; i < compound->getSubspaceCount(); ++i)
+      text += (i ? "," : "") + layout(*compound->getSubspace(i));
+    text += ")";
+  }
+  return text;
+}
+
+}  // namespace
+
+void require_scene_state_space(const Scene& scene, const ob::SpaceInformationPtr& si,
+                               const char* who) {
+  if (!si) throw std::invalid_argument(std::string(who) + ": no space information (null)");
+  const ob::StateSpacePtr expected = make_state_space(scene);
+  const ob::StateSpacePtr& given = si->getStateSpace();
+  if (!given || layout(*given) != layout(*expected)) {
+    throw std::invalid_argument(
+        std::string(who) + ": the space information's state space (" +
+        (given ? given->getName() + ", " + std::to_string(given->getDimension()) + " dimensions"
+               : std::string("none")) +
+        ") is not laid out as scene '" + scene.name + "' plans (" +
+        std::to_string(expected->getDimension()) +
+        " dimensions); make it with gplanner::ompl_adapters::make_state_space(scene)");
+  }
 }
 
 void state_to_row(const Scene& scene, const ob::State* state, float* row) {

@@ -2,6 +2,8 @@
 
 #include <ompl/base/SpaceInformation.h>
 
+#include <stdexcept>
+
 #include "gplanner/planner/ompl/state_space.h"
 #include "gplanner/planner/scene/scene.h"
 
@@ -9,7 +11,11 @@ namespace gplanner::ompl_adapters {
 
 StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr& si,
                                            const Scene& scene, CollisionChecker* checker)
-    : ompl::base::StateValidityChecker(si), scene_(scene), checker_(checker) {}
+    : ompl::base::StateValidityChecker(si), scene_(scene), checker_(checker) {
+  require_scene_state_space(scene, si, "StateValidityChecker");
+  if (checker == nullptr)
+    throw std::invalid_argument("StateValidityChecker: no collision checker (null)");
+}
 
 bool StateValidityChecker::isValid(const ompl::base::State* state) const {
   if (!si_->satisfiesBounds(state)) return false;

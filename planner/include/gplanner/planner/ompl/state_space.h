@@ -9,6 +9,7 @@
 // Distances, interpolation, the largest extent and so the motion resolution
 // (edge_resolution, as the longest valid segment fraction) equal the planner's own.
 
+#include <ompl/base/SpaceInformation.h>
 #include <ompl/base/StateSpace.h>
 
 namespace gplanner {
@@ -24,6 +25,14 @@ ompl::base::StateSpacePtr make_state_space(const Scene& scene);
 // scene far from the world origin (Scene::p_WS not zero) their base position is
 // relative to scene.space.row_origin (ConfigurationSpace::from_file_values converts).
 void state_to_row(const Scene& scene, const ompl::base::State* state, float* row);
+
+// Throws std::invalid_argument, saying what differs and naming `who` (the adapter being
+// made), unless `si` is a space information whose state space is laid out as
+// make_state_space(scene)'s (the same kinds of subspaces, in the same order, of the same
+// dimensions): the adapters convert states by that layout, and another would be read
+// out of bounds.
+void require_scene_state_space(const Scene& scene, const ompl::base::SpaceInformationPtr& si,
+                               const char* who);
 void row_to_state(const Scene& scene, const float* row, ompl::base::State* state);
 
 }  // namespace ompl_adapters

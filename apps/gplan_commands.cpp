@@ -60,9 +60,9 @@ const char* const kUsage =
     "target. Each is written whole or not at all. Exit codes: 0 done, 1 internal error,\n"
     "2 bad input or usage, 3 checkers disagree (check --compare) or a path failed the\n"
     "FCL re-check (bench), 4 no path (plan), 5 a regression against the baseline (bench);\n"
-    "SIGINT or SIGTERM stops a run cleanly, writing nothing more and leaving no temporary\n"
-    "file (bench keeps the runs done in DIR/results.partial.csv): exit 130 (SIGINT) or\n"
-    "143 (SIGTERM); a second signal ends it at once.\n";
+    "SIGINT, SIGTERM or SIGHUP stops a run cleanly, writing nothing more and leaving no\n"
+    "temporary file (bench keeps the runs done in DIR/results.partial.csv): exit 130\n"
+    "(SIGINT), 143 (SIGTERM) or 129 (SIGHUP); a second signal ends it at once.\n";
 
 namespace {
 

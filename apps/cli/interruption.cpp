@@ -34,8 +34,10 @@ void catch_interruptions() {
   // signal comes in the middle of goes on (else the stream would fail and later lines,
   // the "interrupted" one among them, be lost).
   action.sa_flags = SA_RESETHAND | SA_RESTART;
-  for (const int signal_number : {SIGINT, SIGTERM}) {
-    // A signal ignored on entry (a background job of a script, for SIGINT) stays ignored.
+  // SIGHUP (the terminal closed, an ssh session dropped) as SIGTERM: no output half written.
+  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    // A signal ignored on entry (a background job of a script, for SIGINT; nohup, for
+    // SIGHUP) stays ignored.
     struct sigaction previous {};
     if (sigaction(signal_number, nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN)
       continue;
@@ -48,7 +50,9 @@ bool interrupted() { return received_signal != 0; }
 int report_interruption(const std::vector<std::string>& written,
                         const std::vector<std::string>& left) {
   const int signal_number = received_signal;
-  const char* name = signal_number == SIGINT ? "SIGINT" : "SIGTERM";
+  const char* name = signal_number == SIGINT   ? "SIGINT"
+                     : signal_number == SIGHUP ? "SIGHUP"
+                                               : "SIGTERM";
   std::string line = std::string("gplan: interrupted by ") + name + "; ";
   if (written.empty()) {
     line += "nothing written";

@@ -291,7 +291,9 @@ void expect_clean_interruption(const std::vector<std::string>& arguments, int si
   EXPECT_LT(seconds, 1.0) << output;
   ASSERT_TRUE(WIFEXITED(status)) << "ended by the signal itself, not cleanly: " << output;
   EXPECT_EQ(WEXITSTATUS(status), 128 + signal_number) << output;
-  const std::string name = signal_number == SIGINT ? "SIGINT" : "SIGTERM";
+  const std::string name = signal_number == SIGINT   ? "SIGINT"
+                           : signal_number == SIGHUP ? "SIGHUP"
+                                                     : "SIGTERM";
   EXPECT_NE(output.find("gplan: interrupted by " + name + "; nothing written"), std::string::npos)
       << output;
   EXPECT_EQ(listing(output_folder), before) << "no output, no temporary file";
@@ -314,6 +316,16 @@ TEST_F(GplanOutputs, SigintEndsALongPlanCleanly) {
   expect_clean_interruption({"plan", walled, "--backend", "cpu", "--time-limit", "60",
                              "--save-roadmap", path("outputs/roadmap.bin")},
                             SIGINT, path("outputs"), logs.path() + "/log");
+}
+
+TEST_F(GplanOutputs, SighupEndsALongPlanCleanly) {
+  const std::string walled = folder_.write("walled.yaml", kWalledScene);
+  ScratchFolder logs;
+  fs::create_directory(path("outputs"));
+  expect_clean_interruption(
+      {"plan", walled, "--backend", "cpu", "--time-limit", "60", "--out", path("outputs/path.yaml"),
+       "--save-roadmap", path("outputs/roadmap.bin")},
+      SIGHUP, path("outputs"), logs.path() + "/log");
 }
 
 TEST_F(GplanOutputs, SigtermEndsALongCheckCleanly) {

@@ -2,14 +2,20 @@
 
 #include "gplanner/planner/output/atomic_file.h"
 
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "gplanner/planner/output/output_paths.h"
 #include "test_support.h"
@@ -90,6 +96,47 @@ TEST(AtomicFile, ANewFileGetsTheUsualPermissionBits) {
   struct stat status {};
   ASSERT_EQ(stat(path.c_str(), &status), 0);
   EXPECT_EQ(status.st_mode & 07777, 0644u) << "not the temporary file's 0600";
+}
+
+}  // namespace
+}  // namespace gplanner
+
+namespace gplanner {
+namespace {
+
+// Every entry of `folder`, hidden ones included.
+std::vector<std::string> entries(const std::string& folder) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// A process killed (SIGKILL: no handler runs) in the middle of writing leaves nothing
+// beside the target: no hidden temporary, the old content untouched (issue 32).
+TEST(AtomicFile, AProcessKilledWhileWritingLeavesNothingBehind) {
+  const testing::ScratchFolder folder;
+  const std::string kept = folder.write("kept.yaml", "old content\n");
+  for (const std::string& name : {std::string("new.bin"), std::string("kept.yaml")}) {
+    const std::vector<std::string> before = entries(folder.path());
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      write_file_atomically(folder.path() + "/" + name, [](std::ostream& out) {
+        out << std::string(1 << 20, 'x');
+        out.flush();
+        raise(SIGKILL);
+      });
+      _exit(0);
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status));
+    EXPECT_EQ(WTERMSIG(status), SIGKILL);
+    EXPECT_EQ(entries(folder.path()), before) << name;
+  }
+  EXPECT_EQ(testing::read_file(kept), "old content\n");
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "gplanner/common/physical_memory.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -46,7 +47,13 @@ std::size_t physical_memory_bytes() {
   if (pages <= 0 || page_size <= 0) return 0;
   const std::size_t physical =
       static_cast<std::size_t>(pages) * static_cast<std::size_t>(page_size);
-  const std::size_t limit = control_group_limit();
+  std::size_t limit = control_group_limit();
+  // The process's address-space limit (ulimit -v), where one is set.
+  struct rlimit address_space {};
+  if (getrlimit(RLIMIT_AS, &address_space) == 0 && address_space.rlim_cur != RLIM_INFINITY &&
+      address_space.rlim_cur > 0 && (limit == 0 || address_space.rlim_cur < limit)) {
+    limit = static_cast<std::size_t>(address_space.rlim_cur);
+  }
   return limit > 0 && limit < physical ? limit : physical;
 }
 

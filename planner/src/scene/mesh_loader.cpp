@@ -10,11 +10,14 @@
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 
+#include "gplanner/common/physical_memory.h"
 #include "gplanner/planner/scene/input_file.h"
 #include "guarded_io_system.h"
 #include "mesh_file_check.h"
@@ -138,6 +141,45 @@ void validate_mesh(TriangleMesh* mesh, const SourceLocation& where, const std::s
   }
 }
 
+namespace {
+
+// The memory reading a mesh file takes, estimated from what it holds before assimp reads
+// it (which can take tens of seconds): a binary STL says its triangle count in its
+// header; other formats are estimated by their size (a text OBJ holds about 40 bytes a
+// triangle). Per triangle: assimp's copies, ours, the BVHs and FCL's models, about 600
+// bytes. Refused, naming the estimate, where it exceeds what a run may use, or where an
+// STL holds more triangles than a mesh may.
+void check_mesh_memory(const std::string& path, std::uintmax_t size, const SourceLocation& where,
+                       const std::string& what) {
+  constexpr double kBytesPerTriangle = 600;
+  double triangles = static_cast<double>(size) / 40;
+  std::ifstream in(path, std::ios::binary);
+  char header[84];
+  if (in.read(header, sizeof header)) {
+    std::uint32_t count = 0;
+    std::memcpy(&count, header + 80, 4);  // little-endian, as STL is and the machine
+    if (84 + 50 * static_cast<std::uintmax_t>(count) == size) {  // a binary STL
+      if (count > kMaxMeshTriangles) {
+        throw InputError(where,
+                         what + " has " + std::to_string(count) + " triangles, more than the " +
+                             std::to_string(kMaxMeshTriangles) + " a mesh may have; simplify it");
+      }
+      triangles = count;
+    }
+  }
+  const double bytes = triangles * kBytesPerTriangle;
+  if (!fits_in_memory(bytes)) {
+    throw InputError(where, what + " (" + memory_text(static_cast<double>(size)) + ", about " +
+                                std::to_string(static_cast<long long>(triangles)) +
+                                " triangles) would need about " + memory_text(bytes) +
+                                " to read and check, more than half of this machine's " +
+                                memory_text(physical_memory_bytes()) +
+                                " of memory; simplify the mesh");
+  }
+}
+
+}  // namespace
+
 TriangleMesh load_mesh(const std::string& path, const Eigen::Vector3d& scale,
                        const SourceLocation& referenced_from, std::vector<std::string>* notices,
                        std::vector<std::string>* files_read) {
@@ -147,6 +189,7 @@ TriangleMesh load_mesh(const std::string& path, const Eigen::Vector3d& scale,
     throw InputError(referenced_from, "mesh scale must be finite and non-zero on every axis");
   }
   check_mesh_file(path, size, referenced_from, what);
+  check_mesh_memory(path, size, referenced_from, what);
   Assimp::Importer importer;
   // assimp opens the mesh and whatever it names through this (the importer owns it).
   auto* const io_system = new GuardedIOSystem;

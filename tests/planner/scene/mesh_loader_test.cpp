@@ -7,9 +7,13 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -397,6 +401,60 @@ TEST(MeshLoader, ColladaInstanceCyclesAndExplosionsAreRefused) {
   levels += "<node id=\"n20\"/><node id=\"a\"><instance_node url=\"#n0\"/></node>";
   const std::string explosion = mesh_error(scratch.write("explosion.dae", collada_with_nodes(levels)));
   EXPECT_NE(explosion.find("to more than 100000 nodes"), std::string::npos) << explosion;
+}
+
+}  // namespace
+}  // namespace gplanner
+
+namespace gplanner {
+namespace {
+
+// A mesh too large for the memory a run may use is refused before it is read, within a
+// second, saying the estimate (issue 32: a 10-million-triangle mesh was read for 23 s
+// and failed with std::bad_alloc). A binary STL says its triangle count in its header:
+// the file here is sparse, 500 MB that take no disk, in an address space of 3 GB.
+TEST(MeshMemory, AMeshTooLargeForMemoryIsRefusedBeforeItIsRead) {
+  const testing::ScratchFolder folder;
+  const std::string stl = folder.path() + "/big.stl";
+  {
+    std::ofstream out(stl, std::ios::binary);
+    char header[84] = {};
+    const std::uint32_t count = 10000000;
+    std::memcpy(header + 80, &count, 4);
+    out.write(header, sizeof header);
+  }
+  std::filesystem::resize_file(stl, 84 + 50ULL * 10000000);
+  const int outcome = testing::run_with_address_space_to_spare(3ULL << 30, [&] {
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      load_mesh(stl, Eigen::Vector3d::Ones(), {"scene.yaml", 3, "robot.mesh"}, nullptr, nullptr);
+    } catch (const InputError& e) {
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const std::string message = e.what();
+      return seconds < 1.0 &&
+             message.find("10000000 triangles) would need about") != std::string::npos &&
+             message.find("simplify the mesh") != std::string::npos;
+    }
+    return false;
+  });
+  EXPECT_EQ(outcome, 0) << "refused within a second, saying the estimate";
+  // An STL whose header claims more triangles than a mesh may have is refused at once.
+  {
+    std::fstream f(stl, std::ios::binary | std::ios::in | std::ios::out);
+    const std::uint32_t count = 21000000;
+    f.seekp(80);
+    f.write(reinterpret_cast<const char*>(&count), 4);
+  }
+  std::filesystem::resize_file(stl, 84 + 50ULL * 21000000);
+  try {
+    load_mesh(stl, Eigen::Vector3d::Ones(), {"scene.yaml", 3, "robot.mesh"}, nullptr, nullptr);
+    ADD_FAILURE() << "read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("has 21000000 triangles, more than the 20000000"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

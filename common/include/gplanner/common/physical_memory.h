@@ -9,7 +9,8 @@
 namespace gplanner {
 
 // Bytes of physical memory (sysconf), or the control group's (a container's) memory
-// limit where that is lower; 0 where the system does not say.
+// limit or the process's address-space limit (ulimit -v) where lower; 0 where the system
+// does not say.
 std::size_t physical_memory_bytes();
 
 // The share of physical memory one run's large buffers may take: half, leaving the

@@ -47,14 +47,15 @@ std::size_t physical_memory_bytes() {
   if (pages <= 0 || page_size <= 0) return 0;
   const std::size_t physical =
       static_cast<std::size_t>(pages) * static_cast<std::size_t>(page_size);
-  std::size_t limit = control_group_limit();
-  // The process's address-space limit (ulimit -v), where one is set.
-  struct rlimit address_space {};
-  if (getrlimit(RLIMIT_AS, &address_space) == 0 && address_space.rlim_cur != RLIM_INFINITY &&
-      address_space.rlim_cur > 0 && (limit == 0 || address_space.rlim_cur < limit)) {
-    limit = static_cast<std::size_t>(address_space.rlim_cur);
-  }
+  const std::size_t limit = control_group_limit();
   return limit > 0 && limit < physical ? limit : physical;
+}
+
+std::size_t address_space_limit_bytes() {
+  struct rlimit address_space {};
+  if (getrlimit(RLIMIT_AS, &address_space) != 0 || address_space.rlim_cur == RLIM_INFINITY)
+    return 0;
+  return static_cast<std::size_t>(address_space.rlim_cur);
 }
 
 bool fits_in_memory(double bytes) {

@@ -212,16 +212,30 @@ Roadmap load_roadmap(const Scene& scene, const std::string& path) {
   std::memcpy(&width, data.data() + kMagicBytes + 8, sizeof(width));
   std::memcpy(&vertices, data.data() + kMagicBytes + 12, sizeof(vertices));
   std::memcpy(&edges, data.data() + kMagicBytes + 20, sizeof(edges));
-  // Before the sizes: another scene may have another width.
+  // Before the sizes: another scene may have another width. A file is another scene's
+  // only where it is whole by its own header and checksum; otherwise it is damaged.
+  const std::uintmax_t body = size - kHeaderBytes - kChecksumBytes;
   std::uint64_t fingerprint = 0;
   std::memcpy(&fingerprint, data.data() + kMagicBytes, sizeof(fingerprint));
   if (fingerprint != scene_fingerprint(scene)) {
+    const bool sized = width > 0 && vertices <= body / (sizeof(float) * width) &&
+                       edges <= body / kEdgeBytes &&
+                       vertices * width * sizeof(float) + edges * kEdgeBytes == body;
+    if (!sized) throw damaged("", "its header's width and counts do not give its size");
+    std::string whole(static_cast<std::size_t>(size), '\0');
+    std::ifstream again(path, std::ios::binary);
+    again.read(whole.data(), static_cast<std::streamsize>(size));
+    Hash checksum;
+    checksum.bytes(whole.data(), whole.size() - kChecksumBytes);
+    std::uint64_t stored = 0;
+    std::memcpy(&stored, whole.data() + whole.size() - kChecksumBytes, sizeof(stored));
+    if (static_cast<std::uintmax_t>(again.gcount()) != size || stored != checksum.value())
+      throw damaged("", "checksum mismatch");
     throw InputError(file, "roadmap belongs to another scene, or to other settings of '" +
                                scene.file +
                                "' (robot, obstacles, bounds, weights, tolerance or resolution "
                                "differ); build it again for this scene");
   }
-  const std::uintmax_t body = size - kHeaderBytes - kChecksumBytes;
   if (width != scene.space.width() || vertices > body / (sizeof(float) * std::max(width, 1)) ||
       edges > body / kEdgeBytes || vertices * width * sizeof(float) + edges * kEdgeBytes != body) {
     throw damaged("", "its header's width and counts do not give its size");

@@ -147,8 +147,9 @@ namespace {
 // it (which can take tens of seconds): a binary STL says its triangle count in its
 // header; other formats are estimated by their size (a text OBJ holds about 40 bytes a
 // triangle). Per triangle: assimp's copies, ours, the BVHs and FCL's models, about 600
-// bytes. Refused, naming the estimate, where it exceeds what a run may use, or where an
-// STL holds more triangles than a mesh may.
+// bytes. Refused, naming the estimate, where it exceeds what a run may use (half of the
+// machine's memory) or the process's address-space limit, or where an STL holds more
+// triangles than a mesh may.
 void check_mesh_memory(const std::string& path, std::uintmax_t size, const SourceLocation& where,
                        const std::string& what) {
   constexpr double kBytesPerTriangle = 600;
@@ -168,6 +169,16 @@ void check_mesh_memory(const std::string& path, std::uintmax_t size, const Sourc
     }
   }
   const double bytes = triangles * kBytesPerTriangle;
+  const std::size_t address_space = address_space_limit_bytes();
+  if (address_space > 0 && bytes > static_cast<double>(address_space)) {
+    throw InputError(where, what + " (" + memory_text(static_cast<double>(size)) + ", about " +
+                                std::to_string(static_cast<long long>(triangles)) +
+                                " triangles) would need about " + memory_text(bytes) +
+                                " to read and check, more than the process's address-space "
+                                "limit (ulimit -v) of " +
+                                memory_text(static_cast<double>(address_space)) +
+                                "; simplify the mesh or raise the limit");
+  }
   if (!fits_in_memory(bytes)) {
     throw InputError(where, what + " (" + memory_text(static_cast<double>(size)) + ", about " +
                                 std::to_string(static_cast<long long>(triangles)) +

@@ -707,6 +707,21 @@ Scene load_scene(const std::string& path) {
       scene.goal_defined = in.at(goal, "goal");
     }
     scene.planner = read_planner_settings(in, root["planner"]);
+    // The weights the space uses must not all be 0: every configuration would be at
+    // distance 0 from every other (the roadmap, the k-NN and the edges' sampling).
+    const PlannerSettings::DistanceWeights& w = scene.planner.distance_weights;
+    const bool moving_base = scene.space.base != BaseType::kFixed;
+    const bool joints = !scene.space.planned_joints.empty();
+    if ((!moving_base || (w.position == 0 && w.rotation == 0)) && (!joints || w.joint == 0)) {
+      const YAML::Node weights =
+          root["planner"] ? root["planner"]["distance_weights"] : YAML::Node();
+      in.fail(weights, "planner.distance_weights",
+              std::string("the weights this robot's configurations use (") +
+                  (moving_base ? "position, rotation" : "") + (moving_base && joints ? ", " : "") +
+                  (joints ? "joint" : "") +
+                  ") are all 0, so every configuration is at distance 0 from every other; "
+                  "give at least one of them a positive weight");
+    }
     refine_primitive_obstacles(&scene);
     check_band_representable(scene, in.at(root["robot"], "robot"), in.at(root["bounds"], "bounds"));
     // max_displacement: samples per edge by the robot's reach, as many as the longest

@@ -164,6 +164,21 @@ int tab_indented_line(const std::string& text, int line) {
   return 0;
 }
 
+// Whether line `number` (1-based) of `text` holds a key longer than YAML's limit for an
+// implicit key (one written without "? "), 1,024 characters: yaml-cpp then says "illegal
+// map value".
+bool long_implicit_key(const std::string& text, int number) {
+  std::istringstream lines(text);
+  std::string row;
+  for (int i = 1; std::getline(lines, row); ++i) {
+    if (i != number) continue;
+    const std::size_t first = row.find_first_not_of(" \t-");
+    const std::size_t colon = row.find(':', first == std::string::npos ? 0 : first);
+    return first != std::string::npos && colon != std::string::npos && colon - first > 1024;
+  }
+  return false;
+}
+
 }  // namespace
 
 void check_yaml_structure(const std::string& text, const std::string& path,
@@ -188,6 +203,11 @@ void check_yaml_structure(const std::string& text, const std::string& path,
     const int tab = tab_indented_line(text, line + 1);
     if (tab > 0) {
       throw InputError({path, tab, "yaml"}, "tabs cannot indent YAML; use spaces");
+    }
+    if (long_implicit_key(text, line)) {
+      throw InputError({path, line, "yaml"},
+                       "a key longer than 1,024 characters, more than YAML allows a key written "
+                       "this way; shorten it");
     }
     throw InputError({path, line, "yaml"},
                      "malformed YAML: " + e.msg +

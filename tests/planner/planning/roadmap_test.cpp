@@ -128,6 +128,16 @@ TEST(Roadmap, DamagedFilesAreRefusedNamingTheFile) {
   EXPECT_NE(load_error(scene, corrupt).find("damaged"), std::string::npos)
       << load_error(scene, corrupt);
 
+  // The right magic, then garbage (issue 32: it was called another scene's roadmap).
+  std::string garbage = good.substr(0, 19);
+  for (int i = 0; i < 500; ++i) garbage += static_cast<char>((i * 7919) & 0xff);
+  const std::string forged_header = scratch.path() + "/garbage.roadmap";
+  write_bytes(forged_header, garbage);
+  EXPECT_NE(load_error(scene, forged_header).find(forged_header + ": roadmap file is damaged"),
+            std::string::npos)
+      << load_error(scene, forged_header);
+  EXPECT_EQ(load_error(scene, forged_header).find("another scene"), std::string::npos);
+
   const std::string text = scratch.write("notes.txt", "hello\n");
   EXPECT_NE(load_error(scene, text).find("not a gplanner roadmap"), std::string::npos);
   EXPECT_NE(load_error(scene, scratch.path() + "/missing").find("does not exist"),

@@ -120,6 +120,10 @@ TEST(PlannerSettings, ValuesOutsideTheirRangesAreRefusedWithTheLineAndKey) {
       {"planner:\n  roadmap: 3\n", "planner.roadmap: unknown planner setting"},
       {"planner:\n  seed: [1]\n", "planner.seed: expected a number"},
       {"planner: 3\n", "planner: expected a map of settings"},
+      // The weights the cube's floating base uses all 0 (issue 32: it ran to the limit).
+      {"planner:\n  distance_weights: {position: 0, rotation: 0}\n",
+       "scene.yaml:14: planner.distance_weights: the weights this robot's configurations use "
+       "(position, rotation) are all 0"},
   };
   for (const Case& c : cases) {
     const std::string message = refusal(c.planner);

@@ -896,6 +896,14 @@ TEST_F(SceneErrors, HugeScalarIsEchoedAsAnExcerpt) {
   }
 }
 
+// A key longer than YAML allows an implicit key is said so (issue 32: "illegal map value").
+TEST_F(SceneErrors, KeyLongerThanYamlAllowsIsSaidSo) {
+  const std::string text = "name: long\n" + std::string(1100, 'k') + ": 3\n";
+  const std::string scene = write("scene.yaml", text);
+  EXPECT_TRUE(FailsWith([&] { load_scene(scene); },
+                        {scene, 2, "yaml", {"a key longer than 1,024 characters", "shorten it"}}));
+}
+
 TEST_F(SceneErrors, QuaternionWithHugePartsIsNormalisedNotOverflowed) {
   MeshScene s;
   s.start = "start:\n  base: {xyz: [-1, 0, 0], quat_wxyz: [1e308, 1e308, 0, 0]}\n";

@@ -9,9 +9,12 @@
 namespace gplanner {
 
 // Bytes of physical memory (sysconf), or the control group's (a container's) memory
-// limit or the process's address-space limit (ulimit -v) where lower; 0 where the system
-// does not say.
+// limit where that is lower; 0 where the system does not say.
 std::size_t physical_memory_bytes();
+
+// The process's address-space limit (ulimit -v, RLIMIT_AS), or 0 where none is set: what
+// one allocation, however brief, cannot exceed.
+std::size_t address_space_limit_bytes();
 
 // The share of physical memory one run's large buffers may take: half, leaving the
 // rest to the system, the collision model and the other buffers of the run.

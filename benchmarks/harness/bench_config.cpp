@@ -98,7 +98,8 @@ const std::vector<std::string>& bench_planners() {
 }
 
 const std::vector<std::string>& bench_plan_checkers() {
-  static const std::vector<std::string> checkers = {"gpu", "cpu", "fcl"};
+  static const std::vector<std::string> checkers = {"gpu", "cpu", "fcl", "gpu-sampled",
+                                                    "cpu-sampled"};
   return checkers;
 }
 
@@ -204,6 +205,12 @@ BenchConfig load_bench_config(const std::string& file) {
                 "'" + label + "' is not PLANNER@CHECKER with PLANNER one of " +
                     listed(bench_planners()) + " and CHECKER one of " +
                     listed(bench_plan_checkers()) + " (e.g. ompl-rrtconnect@fcl)");
+      }
+      if (choice.sampled() && choice.ours()) {
+        in.fail(planners[i], "planners[" + std::to_string(i) + "]",
+                "'" + label +
+                    "': -sampled names the plugin's sampled motion validator, for "
+                    "OMPL's planners; ours are given by --edges (sampled edges, a certified path)");
       }
       config.planners.push_back(choice);
     }

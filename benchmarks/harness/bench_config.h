@@ -19,12 +19,17 @@ namespace gplan {
 // planner with our validity checker and motion validator: the OMPL plugin).
 struct PlannerChoice {
   std::string planner;  // ours-lazyprm, ours-prm, ompl-rrtconnect, ompl-prm, ompl-lazyprm
-  std::string checker;  // gpu, cpu, fcl
+  // gpu, cpu, fcl; for OMPL's planners through the plugin also gpu-sampled, cpu-sampled:
+  // the plugin's motion validator sampled, not certified (its default).
+  std::string checker;
   std::string label() const { return planner + "@" + checker; }
   bool ours() const { return planner.rfind("ours-", 0) == 0; }
+  // The collision backend the checker names (gpu, cpu, fcl).
+  std::string backend() const { return checker.substr(0, checker.find('-')); }
+  bool sampled() const { return checker.find("-sampled") != std::string::npos; }
   // OMPL's planner with FCL, or with the gpu plugin: one planning thread, so several may
   // run at once (those on the GPU one at a time).
-  bool single_threaded() const { return !ours() && (checker == "fcl" || checker == "gpu"); }
+  bool single_threaded() const { return !ours() && (backend() == "fcl" || backend() == "gpu"); }
 };
 
 // Regression tolerances: a group of the run is a regression against the same group of

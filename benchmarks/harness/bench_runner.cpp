@@ -128,7 +128,7 @@ std::vector<BenchGroup> bench_groups(const BenchConfig& config) {
         group.choice = choice;
         group.runs = config.runs;
         group.alone = !choice.single_threaded();
-        group.gpu = choice.checker == "gpu";
+        group.gpu = choice.backend() == "gpu";
         (group.alone ? alone : together).push_back(group);
       }
     } else {

@@ -94,8 +94,9 @@ BenchRecord run_ompl(const gplanner::Scene& scene, const BenchConfig& config,
   BenchRecord record;
   record.checker = choice.checker;
   seed_ompl(seed);
-  // @fcl: OMPL's own DiscreteMotionValidator; otherwise ours (the plugin).
-  const bool plugin = choice.checker != "fcl";
+  // @fcl: OMPL's own DiscreteMotionValidator; otherwise ours (the plugin), certified as it
+  // is by default, or sampled (@gpu-sampled, @cpu-sampled).
+  const bool plugin = choice.backend() != "fcl";
   og::SimpleSetup setup(gplanner::ompl_adapters::make_state_space(scene));
   const ob::SpaceInformationPtr si = setup.getSpaceInformation();
   // Timed: the share of the plan time in collision checks (bench/timed_checks.h).
@@ -103,7 +104,10 @@ BenchRecord run_ompl(const gplanner::Scene& scene, const BenchConfig& config,
   auto validity = std::make_shared<TimedStateValidityChecker>(si, scene, checker, clock);
   setup.setStateValidityChecker(validity);
   if (plugin) {
-    si->setMotionValidator(std::make_shared<TimedMotionValidator>(si, scene, checker, clock));
+    si->setMotionValidator(std::make_shared<TimedMotionValidator>(
+        si, scene, checker,
+        choice.sampled() ? gplanner::EdgeChecks::kSampled : gplanner::EdgeChecks::kCertified,
+        clock));
   } else {
     si->setMotionValidator(std::make_shared<TimedDiscreteMotionValidator>(si, clock));
   }
@@ -195,14 +199,14 @@ void run_planning_group(const gplanner::Scene& scene, const std::string& scene_n
   // named backend.
   std::unique_ptr<gplanner::CollisionChecker> checker;
   std::unique_ptr<gplanner::NeighborFinder> neighbors;
-  if (!choice.ours() && choice.checker == "fcl") {
+  if (!choice.ours() && choice.backend() == "fcl") {
     checker = std::make_unique<gplanner::FclChecker>(scene, /*threads=*/1);
   } else {
     std::string fallback;
     gplanner::CheckerOptions options;
     options.threads = host_threads;
-    checker = gplanner::make_collision_checker(scene, choice.checker, options, &fallback);
-    if (checker->backend() != choice.checker)
+    checker = gplanner::make_collision_checker(scene, choice.backend(), options, &fallback);
+    if (checker->backend() != choice.backend())
       throw std::runtime_error(fallback_refusal(choice.label(), fallback));
   }
   if (choice.ours()) {
@@ -233,7 +237,7 @@ void run_planning_group(const gplanner::Scene& scene, const std::string& scene_n
     record.experiment = config.name;
     record.scene = scene_name;
     record.planner = choice.planner;
-    record.checker = checker->backend();
+    record.checker = checker->backend() + (choice.sampled() ? "-sampled" : "");
     record.run = first_run + run;
     record.seed = seed;
     spent += std::isfinite(record.time_s) ? record.time_s : config.time_limit_s;

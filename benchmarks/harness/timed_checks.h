@@ -72,8 +72,9 @@ class TimedDiscreteMotionValidator : public ompl::base::DiscreteMotionValidator 
 class TimedMotionValidator : public gplanner::ompl_adapters::MotionValidator {
  public:
   TimedMotionValidator(const ompl::base::SpaceInformationPtr& si, const gplanner::Scene& scene,
-                       gplanner::CollisionChecker* checker, std::shared_ptr<CheckClock> clock)
-      : MotionValidator(si, scene, checker), clock_(std::move(clock)) {}
+                       gplanner::CollisionChecker* checker, gplanner::EdgeChecks edges,
+                       std::shared_ptr<CheckClock> clock)
+      : MotionValidator(si, scene, checker, edges), clock_(std::move(clock)) {}
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
                    std::pair<ompl::base::State*, double>& lastValid) const override;

@@ -160,8 +160,10 @@ int main(int argc, char** argv) {
     si->setStateValidityChecker(
         std::make_shared<gplanner::ompl_adapters::StateValidityChecker>(si, scene, checker));
     if (ours) {
-      si->setMotionValidator(
-          std::make_shared<gplanner::ompl_adapters::MotionValidator>(si, scene, checker));
+      // Sampled, as OMPL's DiscreteMotionValidator beside it samples (the plugin's
+      // default certifies).
+      si->setMotionValidator(std::make_shared<gplanner::ompl_adapters::MotionValidator>(
+          si, scene, checker, gplanner::EdgeChecks::kSampled));
     } else {
       si->setMotionValidator(std::make_shared<ob::DiscreteMotionValidator>(si));
     }

@@ -177,8 +177,9 @@ int main(int argc, char** argv) {
     const ob::SpaceInformationPtr si = setup.getSpaceInformation();
     setup.setStateValidityChecker(
         std::make_shared<gplanner::ompl_adapters::StateValidityChecker>(si, scene, checker.get()));
-    si->setMotionValidator(
-        std::make_shared<gplanner::ompl_adapters::MotionValidator>(si, scene, checker.get()));
+    // Sampled, as measured since issue 16 (the plugin's default certifies).
+    si->setMotionValidator(std::make_shared<gplanner::ompl_adapters::MotionValidator>(
+        si, scene, checker.get(), gplanner::EdgeChecks::kSampled));
     si->setup();
 
     const std::size_t n = 4096, width = scene.space.width();

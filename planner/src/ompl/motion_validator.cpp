@@ -26,7 +26,7 @@ CollisionChecker* required(CollisionChecker* checker) {
 
 MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
                                  CollisionChecker* checker)
-    : MotionValidator(si, scene, checker, EdgeChecks::kSampled) {}
+    : MotionValidator(si, scene, checker, EdgeChecks::kCertified) {}
 
 MotionValidator::MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
                                  CollisionChecker* checker, const LocalPlannerOptions& options)

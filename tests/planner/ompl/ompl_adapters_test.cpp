@@ -130,7 +130,7 @@ TEST(OmplValidityChecker, BatchesAndThreadsGiveTheSameAnswers) {
 
 TEST(OmplMotionValidator, AgreesWithOmplsDiscreteMotionValidator) {
   Fixture f("pr2_base_arm.yaml");
-  ompl_adapters::MotionValidator ours(f.si, f.scene, &f.checker);
+  ompl_adapters::MotionValidator ours(f.si, f.scene, &f.checker, EdgeChecks::kSampled);
   ob::DiscreteMotionValidator discrete(f.si);
   const std::vector<ob::State*> states = f.states(300, 7);
   std::vector<std::pair<const ob::State*, const ob::State*>> motions;
@@ -206,7 +206,7 @@ TEST(OmplMotionValidator, StopsAtTheFirstCollisionAsOmplsDoes) {
   counted_si->setStateValidityChecker(
       std::make_shared<ompl_adapters::StateValidityChecker>(counted_si, f.scene, &counting));
   counted_si->setup();
-  ompl_adapters::MotionValidator ours(counted_si, f.scene, &counting);
+  ompl_adapters::MotionValidator ours(counted_si, f.scene, &counting, EdgeChecks::kSampled);
   ob::DiscreteMotionValidator discrete(counted_si);
   LocalPlanner local(f.scene, &f.checker);
   const std::vector<ob::State*> states = f.states(400, 11);
@@ -257,7 +257,7 @@ TEST(OmplMotionValidator, FollowsTheResolutionSetOnTheSpaceInformation) {
   const double scene_resolution = si->getStateValidityCheckingResolution();
   si->setStateValidityCheckingResolution(scene_resolution / 4);
   si->setup();
-  ompl_adapters::MotionValidator ours(si, f.scene, &counting);
+  ompl_adapters::MotionValidator ours(si, f.scene, &counting, EdgeChecks::kSampled);
   ob::DiscreteMotionValidator discrete(si);
   LocalPlanner at_scene_resolution(f.scene, &f.checker);
   const std::vector<ob::State*> states = f.states(200, 5);

@@ -1,7 +1,8 @@
 #pragma once
 // An OMPL motion validator backed by any of our collision backends: the straight-line
 // motion between two states (the end state included, the start assumed valid, as
-// OMPL's DiscreteMotionValidator does) sampled at the scene's edge resolution. As
+// OMPL's DiscreteMotionValidator does), certified by default (below), or sampled at the
+// scene's edge resolution. Sampled, as
 // OMPL's, a single motion is checked end state first, then coarse to fine (the
 // midpoint, the quarter points, ...), stopping at the first collision; with lastValid,
 // in order from the start. Small calls are answered on the host (the calling thread,
@@ -13,10 +14,13 @@
 // only the counters are updated under a lock. The batch extension checks many motions
 // in one call, level by level (LocalPlanner::check_motions).
 //
-// Certified (EdgeChecks::kCertified): every motion is certified free along its whole
-// length (CertifiedMotions), not sampled; a motion that is not certified is invalid, and
-// its last valid state is the last sample before the first collision if the motion up to
-// it certifies, else the start state.
+// Certified (EdgeChecks::kCertified, the default since 0.2.0): every motion is certified
+// free along its whole length (CertifiedMotions), not sampled; a motion that is not
+// certified is invalid, and its last valid state is the last sample before the first
+// collision if the motion up to it certifies, else the start state. Sampled
+// (EdgeChecks::kSampled, or given LocalPlannerOptions) is what OMPL's
+// DiscreteMotionValidator does: faster, and blind to a wall thinner than the samples'
+// spacing.
 
 #include <ompl/base/MotionValidator.h>
 
@@ -38,10 +42,13 @@ namespace ompl_adapters {
 
 class MotionValidator : public ompl::base::MotionValidator {
  public:
-  // scene and checker must outlive this object; options: the resolution (the scene's
-  // edge_resolution and max_displacement by default).
+  // scene and checker must outlive this object. By default every motion is certified
+  // free along its whole length (since 0.2.0; before, sampled: a motion free at its
+  // samples can cross a wall thinner than their spacing).
   MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
                   CollisionChecker* checker);
+  // Sampled, at `options`' resolution (the scene's edge_resolution and max_displacement
+  // where not given).
   MotionValidator(const ompl::base::SpaceInformationPtr& si, const Scene& scene,
                   CollisionChecker* checker, const LocalPlannerOptions& options);
   // Sampled at the scene's resolution, or certified (with `certified`'s step).

@@ -119,8 +119,13 @@ std::string checker_description(const BenchRecord& record) {
   if (record.checker == "fcl") return "FCL on the CPU (the baseline)";
   if (record.checker == "cpu") return "gplanner's exact triangle-mesh checker on the CPU";
   if (record.checker == "gpu") return "gplanner's exact triangle-mesh checker on the GPU";
+  if (record.checker == "cpu-sampled")
+    return "gplanner's exact triangle-mesh checker on the CPU, motions sampled";
+  if (record.checker == "gpu-sampled")
+    return "gplanner's exact triangle-mesh checker on the GPU, motions sampled";
   reject(record, "the checker '" + one_line(record.checker) +
-                     "' is not one a planning run uses (fcl, cpu or gpu)");
+                     "' is not one a planning run uses (fcl, cpu, gpu, cpu-sampled or "
+                     "gpu-sampled)");
 }
 
 // BenchRecord::status as OMPL's PlannerStatus; an exception's run is OMPL's ABORT ("the

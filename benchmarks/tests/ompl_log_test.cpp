@@ -416,3 +416,20 @@ TEST(OmplLog, MachineAndDate) {
 
 }  // namespace
 }  // namespace gplan
+
+namespace gplan {
+namespace {
+
+// The plugin's sampled motion validator (@gpu-sampled, @cpu-sampled) is a checker of its
+// own in the log, described as sampled.
+TEST(OmplLog, SampledPluginCheckersAreLogged) {
+  for (const char* checker : {"gpu-sampled", "cpu-sampled"}) {
+    std::ostringstream text;
+    write_ompl_log(text, piano_experiment(),
+                   {planning_record("ompl-rrtconnect", checker, 0, "exact")});
+    EXPECT_NE(text.str().find("motions sampled"), std::string::npos) << checker;
+  }
+}
+
+}  // namespace
+}  // namespace gplan

@@ -1,5 +1,7 @@
 #include "gplanner/planner/ompl/roadmap_planners.h"
 
+#include <stdexcept>
+
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/goals/GoalState.h>
@@ -55,6 +57,8 @@ RoadmapOmplPlanner::RoadmapOmplPlanner(const ob::SpaceInformationPtr& si, const 
   specs_.recognizedGoal = ob::GOAL_SAMPLEABLE_REGION;
   specs_.multithreaded = false;
   specs_.optimizingPaths = false;
+  require_scene_state_space(scene, si, name_.c_str());
+  if (checker == nullptr) throw std::invalid_argument(name_ + ": no collision checker (null)");
   options_.seed = 0;  // drawn from rng_
   // A termination condition's deadline is unknown: slices short enough that one of
   // OMPL's time limits is kept within about 0.1 s, long enough for large batches.

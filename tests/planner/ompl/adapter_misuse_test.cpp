@@ -1,7 +1,7 @@
-// The OMPL adapters refuse what would make them read out of bounds or through a null
-// pointer (issue 32): a space information of another layout than the scene's (another
-// robot's, a 2-D plane for a 6-DOF piano), none at all, and no checker. Each throws
-// std::invalid_argument saying what differs; none crashes.
+// The OMPL adapters and our planners as OMPL planners refuse what would make them read
+// out of bounds or through a null pointer (issue 32): a space information of another layout than
+// the scene's (another robot's, a 2-D plane for a 6-DOF piano), none at all, and no checker. Each
+// throws std::invalid_argument saying what differs; none crashes.
 
 #include <gtest/gtest.h>
 #include <ompl/base/SpaceInformation.h>
@@ -14,6 +14,7 @@
 
 #include "gplanner/planner/checkers/cpu_checker.h"
 #include "gplanner/planner/ompl/motion_validator.h"
+#include "gplanner/planner/ompl/roadmap_planners.h"
 #include "gplanner/planner/ompl/state_space.h"
 #include "gplanner/planner/ompl/state_validity_checker.h"
 #include "gplanner/planner/scene/scene.h"
@@ -68,6 +69,15 @@ TEST(AdapterMisuse, AnotherLayoutNoSpaceInformationOrNoCheckerIsRefused) {
       refusal([&] { MotionValidator(piano_si, piano, nullptr); }).find("no collision checker"),
       std::string::npos);
   EXPECT_NE(refusal([&] { MotionValidator(nullptr, piano, &checker); }).find("null"),
+            std::string::npos);
+  // Our planners as OMPL planners, the same way.
+  EXPECT_NE(refusal([&] {
+              ompl_adapters::Prm(arm_si, piano, &checker);
+            }).find("gplanner PRM: the space information's state space"),
+            std::string::npos);
+  EXPECT_NE(refusal([&] {
+              ompl_adapters::LazyPrm(piano_si, piano, nullptr);
+            }).find("no collision checker"),
             std::string::npos);
   // The scene's own layout is taken.
   EXPECT_EQ(refusal([&] { StateValidityChecker(piano_si, piano, &checker); }), "");

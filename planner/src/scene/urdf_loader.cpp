@@ -100,6 +100,18 @@ TriangleMesh collision_geometry(const urdf::Geometry& geometry, const std::strin
   throw InputError(where, "unsupported collision geometry");
 }
 
+// Reads the URDF or SRDF at `path` (within `kind`'s size bound) into `doc` and returns its
+// text; XML that is not well-formed is an InputError at the line tinyxml2 names.
+std::string parse_xml_file(const std::string& path, const InputFileKind& kind,
+                           const SourceLocation& referenced_from, tinyxml2::XMLDocument* doc) {
+  std::string xml = read_input_file(path, kind, referenced_from);
+  if (doc->Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    throw InputError({path, doc->ErrorLineNum(), "xml"},
+                     std::string("not well-formed XML: ") + doc->ErrorName() + "; fix the file");
+  }
+  return xml;
+}
+
 }  // namespace
 
 std::string resolve_resource(const std::string& uri, const std::string& base_folder,
@@ -491,12 +503,8 @@ void notice_mimic_range(const Joint& follower, const Joint& leader, const Source
 
 RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
                      const SourceLocation& referenced_from, std::vector<std::string>* notices) {
-  const std::string xml = read_input_file(urdf_path, kUrdfFile, referenced_from);
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    throw InputError({urdf_path, doc.ErrorLineNum(), "xml"},
-                     std::string("not well-formed XML: ") + doc.ErrorName() + "; fix the file");
-  }
+  const std::string xml = parse_xml_file(urdf_path, kUrdfFile, referenced_from, &doc);
   check_tree(doc, urdf_path);
   const std::map<std::string, LinkElements> link_elements =
       check_collisions(doc, urdf_path, notices);
@@ -644,12 +652,8 @@ RobotModel load_urdf(const std::string& urdf_path, const PackageMap& packages,
 
 int apply_srdf(RobotModel* robot, const std::string& srdf_path,
                const SourceLocation& referenced_from, std::vector<std::string>* notices) {
-  const std::string xml = read_input_file(srdf_path, kSrdfFile, referenced_from);
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    throw InputError({srdf_path, doc.ErrorLineNum(), "xml"},
-                     std::string("not well-formed XML: ") + doc.ErrorName() + "; fix the file");
-  }
+  parse_xml_file(srdf_path, kSrdfFile, referenced_from, &doc);
   const tinyxml2::XMLElement* root = doc.RootElement();
   if (root == nullptr || std::string(root->Name()) != "robot") {
     throw InputError({srdf_path, root ? root->GetLineNum() : 0, "robot"},
@@ -798,12 +802,8 @@ void collect_group_joints(const RobotModel& robot, const tinyxml2::XMLElement* r
 std::vector<int> srdf_group_joints(const RobotModel& robot, const std::string& srdf_path,
                                    const std::string& group,
                                    const SourceLocation& referenced_from) {
-  const std::string xml = read_input_file(srdf_path, kSrdfFile, referenced_from);
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    throw InputError({srdf_path, doc.ErrorLineNum(), "xml"},
-                     std::string("not well-formed XML: ") + doc.ErrorName() + "; fix the file");
-  }
+  parse_xml_file(srdf_path, kSrdfFile, referenced_from, &doc);
   const tinyxml2::XMLElement* root = doc.RootElement();
   const tinyxml2::XMLElement* g = root ? find_group(root, group) : nullptr;
   if (g == nullptr) {

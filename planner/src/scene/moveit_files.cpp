@@ -48,6 +48,29 @@ Eigen::Vector3d read_xyz(const YamlReader& in, const YAML::Node& node, const std
   return in.vector3(node, key);
 }
 
+// The rotation of the quaternion x y z w (w last), normalised, in *q; or, when it is of
+// zero length or far from unit length, the problem, naming the parts as `parts` and the
+// real part as `w`. MoveIt normalises what it is given, as do we, but one far from unit
+// length is a mistake more often than a rotation: refuse it.
+std::string unit_quaternion_xyzw(const double xyzw[4], const std::string& parts,
+                                 const std::string& w, Eigen::Quaterniond* q) {
+  double largest = 0;
+  for (int k = 0; k < 4; ++k) largest = std::max(largest, std::abs(xyzw[k]));
+  if (largest < 1e-9)
+    return "zero-length quaternion; give " + parts + " with " + w + " = 1 for no rotation";
+  // Scaled by the largest part first, so that tiny or huge parts do not under- or overflow.
+  const Eigen::Quaterniond r(xyzw[3] / largest, xyzw[0] / largest, xyzw[1] / largest,
+                             xyzw[2] / largest);
+  const double norm = r.norm() * largest;
+  if (std::abs(norm - 1) > 1e-3) {
+    std::ostringstream problem;
+    problem << "quaternion of length " << norm << ", not 1; give a unit quaternion " << parts;
+    return problem.str();
+  }
+  *q = r.normalized();
+  return "";
+}
+
 // A quaternion as ROS writes one: [x, y, z, w] or {x:, y:, z:, w:} (w last, unlike a
 // gplanner scene's quat_wxyz).
 Eigen::Quaterniond read_xyzw(const YamlReader& in, const YAML::Node& node, const std::string& key) {
@@ -59,21 +82,10 @@ Eigen::Quaterniond read_xyzw(const YamlReader& in, const YAML::Node& node, const
   } else {
     v = in.numbers(node, key, 4);
   }
-  double largest = 0;
-  for (const double part : v) largest = std::max(largest, std::abs(part));
-  if (largest < 1e-9) {
-    in.fail(node, key, "zero-length quaternion; give [x, y, z, w] with w = 1 for no rotation");
-  }
-  Eigen::Quaterniond q(v[3] / largest, v[0] / largest, v[1] / largest, v[2] / largest);
-  // MoveIt normalises what it is given, as do we, but one far from unit length is a
-  // mistake more often than a rotation: refuse it.
-  const double norm = q.norm() * largest;
-  if (std::abs(norm - 1) > 1e-3) {
-    std::ostringstream problem;
-    problem << "quaternion of length " << norm << ", not 1; give a unit quaternion [x, y, z, w]";
-    in.fail(node, key, problem.str());
-  }
-  return q.normalized();
+  Eigen::Quaterniond q;
+  const std::string problem = unit_quaternion_xyzw(v.data(), "[x, y, z, w]", "w", &q);
+  if (!problem.empty()) in.fail(node, key, problem);
+  return q;
 }
 
 // A geometry_msgs/Pose: {position:, orientation:}, either part absent meaning none.
@@ -441,21 +453,12 @@ class SceneText {
     for (int k = 0; k < 3; ++k) p[k] = number(key);
     X.translation() = p;
     const int at = line();
-    double q[4];
-    for (double& part : q) part = number(key);
-    double largest = 0;
-    for (const double part : q) largest = std::max(largest, std::abs(part));
-    if (largest < 1e-9)
-      throw InputError({path_, at, key},
-                       "zero-length quaternion; give qx qy qz qw with qw = 1 for no rotation");
-    const Eigen::Quaterniond r(q[3] / largest, q[0] / largest, q[1] / largest, q[2] / largest);
-    if (std::abs(r.norm() * largest - 1) > 1e-3) {
-      std::ostringstream problem;
-      problem << "quaternion of length " << r.norm() * largest
-              << ", not 1; give a unit quaternion qx qy qz qw";
-      throw InputError({path_, at, key}, problem.str());
-    }
-    X.linear() = r.normalized().toRotationMatrix();
+    double xyzw[4];
+    for (double& part : xyzw) part = number(key);
+    Eigen::Quaterniond q;
+    const std::string problem = unit_quaternion_xyzw(xyzw, "qx qy qz qw", "qw", &q);
+    if (!problem.empty()) throw InputError({path_, at, key}, problem);
+    X.linear() = q.toRotationMatrix();
     return X;
   }
   [[noreturn]] void fail(const std::string& key, const std::string& problem) {

@@ -42,7 +42,7 @@ struct CollisionReporter::Impl {
     }
     for (const Obstacle& obstacle : scene.obstacles) {
       obstacles.push_back(
-          obstacle.is_solid_primitive()
+          obstacle.is_solid_round_primitive()
               ? std::make_unique<fcl::CollisionObjectd>(fcl_primitive(obstacle), obstacle.X_SO)
               : std::make_unique<fcl::CollisionObjectd>(fcl_mesh(obstacle.mesh_S)));
       obstacles.back()->computeAABB();

@@ -18,13 +18,13 @@ std::shared_ptr<FclBvh> fcl_mesh(const TriangleMesh& mesh) {
 
 std::shared_ptr<fcl::CollisionGeometryd> fcl_primitive(const Obstacle& obstacle) {
   const Eigen::Vector3d& d = obstacle.dimensions;
+  if (!obstacle.is_solid_round_primitive()) return nullptr;
   switch (obstacle.shape) {
-    case ObstacleShape::kBox:
-      return std::make_shared<fcl::Boxd>(d.x(), d.y(), d.z());
     case ObstacleShape::kSphere:
       return std::make_shared<fcl::Sphered>(d.x());
     case ObstacleShape::kCylinder:
       return std::make_shared<fcl::Cylinderd>(d.x(), d.y());
+    case ObstacleShape::kBox:
     case ObstacleShape::kMesh:
       break;
   }

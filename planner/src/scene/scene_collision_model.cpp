@@ -253,10 +253,10 @@ std::vector<BodyComponent> mesh_body_components(const TriangleMesh& mesh,
   return out;
 }
 
-std::vector<BodyComponent> environment_components(const Scene& scene, bool exact_primitives) {
+std::vector<BodyComponent> environment_components(const Scene& scene, bool exact_round_primitives) {
   std::vector<BodyComponent> out;
   for (const Obstacle& obstacle : scene.obstacles) {
-    if (exact_primitives && obstacle.is_solid_primitive()) {
+    if (exact_round_primitives && obstacle.is_solid_round_primitive()) {
       BodyComponent centre;
       const Eigen::Vector3d c = obstacle.X_SO.translation();
       const Eigen::AlignedBox3d box = obstacle.mesh_S.bounds();
@@ -285,7 +285,7 @@ void refine_primitive_obstacles(Scene* scene) {
   };
   std::vector<std::pair<Obstacle*, double>> refined;  // and the excess of each
   for (Obstacle& obstacle : scene->obstacles) {
-    if (!obstacle.is_solid_primitive() || obstacle.shape == ObstacleShape::kBox) continue;
+    if (!obstacle.is_solid_round_primitive()) continue;
     const double radius = obstacle.dimensions.x();
     TriangleMesh mesh;
     double excess = 0;

@@ -500,6 +500,10 @@ bool Obstacle::is_solid_primitive() const {
   return shape != ObstacleShape::kMesh && !solid.empty() && solid[0] != 0;
 }
 
+bool Obstacle::is_solid_round_primitive() const {
+  return is_solid_primitive() && shape != ObstacleShape::kBox;
+}
+
 Eigen::Isometry3d Scene::X_WS() const { return Eigen::Isometry3d(Eigen::Translation3d(p_WS)); }
 
 std::size_t Scene::obstacle_triangle_count() const {

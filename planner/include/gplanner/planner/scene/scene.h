@@ -37,8 +37,12 @@ struct Obstacle {
   std::string file;        // a mesh obstacle's file
   SourceLocation defined;  // where the scene defines it
 
-  // Checked as an FCL primitive by the fcl backend: a solid box, sphere or cylinder.
+  // A solid box, sphere or cylinder.
   bool is_solid_primitive() const;
+  // A solid sphere or cylinder: checked as FCL's own shape by the fcl backend. A solid
+  // box is checked there as its 12 triangles, which are exact (FCL's GJK misses some
+  // box-triangle intersections; docs/design.md, "Solids").
+  bool is_solid_round_primitive() const;
 };
 
 struct Scene {

@@ -47,10 +47,11 @@ std::vector<std::uint8_t> obstacle_solid_triangles(const Obstacle& obstacle);
 std::vector<BodyComponent> mesh_body_components(const TriangleMesh& mesh,
                                                 const std::vector<std::uint8_t>& solid);
 
-// The environment's components, obstacle by obstacle. exact_primitives: each solid
-// primitive as one point, its centre, holding nothing (the fcl backend, which checks
-// primitives as FCL primitives, solid already); otherwise as its tessellation.
-std::vector<BodyComponent> environment_components(const Scene& scene, bool exact_primitives);
+// The environment's components, obstacle by obstacle. exact_round_primitives: each solid
+// sphere or cylinder as one point, its centre, holding nothing (the fcl backend, which
+// checks them as FCL's shapes, solid already); otherwise as its tessellation. A box is
+// always its tessellation, which is exact.
+std::vector<BodyComponent> environment_components(const Scene& scene, bool exact_round_primitives);
 
 // Tessellates every solid sphere and cylinder obstacle anew, so finely that its faces lie
 // within a fifth of the tolerance band of the exact shape (which the fcl backend checks),

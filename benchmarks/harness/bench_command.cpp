@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -38,7 +39,7 @@ namespace gplan {
 
 const char* const kBenchUsage =
     "usage: gplan-bench CONFIG [-o DIR] [--jobs N] [--baseline FILE] [--save-baseline FILE]\n"
-    "                   [--report DIR] [--no-plots]\n"
+    "                   [--shard I/N] [--report DIR] [--no-plots]\n"
     "      regression runs and the seed's tables as a configuration (benchmarks/config/*.yaml)\n"
     "      says: every run in a worker process with its own seed, progress on stderr;\n"
     "      writes DIR (default gplan-bench-NAME-DATE-TIME; a new or empty folder):\n"
@@ -48,8 +49,12 @@ const char* const kBenchUsage =
     "      the GPU; a path failing the re-check is kept in DIR/failed_paths/;\n"
     "      --save-baseline keeps the groups' figures, --baseline compares with them\n"
     "      (exit 5 on a regression beyond the configuration's tolerances); exit 3 when a\n"
-    "      returned path fails the fine FCL re-check; --report DIR summarises an earlier\n"
-    "      run's folder again (and draws its plots) instead of running\n"
+    "      returned path fails the fine FCL re-check; --shard I/N runs only the I-th of\n"
+    "      N shares of the scenes (or problems): every N-th from the I-th, keeping their\n"
+    "      run numbers, so N shards on N machines or GPUs run the whole configuration\n"
+    "      (their results.csv files joined, one header, make one run's); --report DIR\n"
+    "      summarises an earlier run's folder again (and draws its plots) instead of\n"
+    "      running\n"
     "Exit codes: 0 done, 1 internal error, 2 bad input or usage, 3 a path failed the FCL\n"
     "re-check, 5 a regression against the baseline; SIGINT or SIGTERM stops a run cleanly,\n"
     "keeping the runs done in DIR/results.partial.csv: exit 130 (SIGINT) or 143 (SIGTERM);\n"
@@ -62,6 +67,34 @@ namespace fs = std::filesystem;
 // Exit codes beyond gplan's own (0 done, 1 internal error, 2 bad input or usage).
 constexpr int kExitPathFailedRecheck = 3;  // a returned path failed the FCL re-check
 constexpr int kExitRegression = 5;         // worse than the baseline beyond a tolerance
+
+// --shard I/N: the I-th (1-based) of N shares of the configuration's scenes, every N-th
+// from the I-th (a problem set lists its scenarios one after another, so each share
+// takes from all of them).
+void keep_shard(const std::string& shard, BenchConfig* config) {
+  unsigned long i = 0, n = 0;
+  char slash = 0, rest = 0;
+  std::istringstream in(shard);
+  const bool digits = !shard.empty() && std::isdigit(static_cast<unsigned char>(shard[0]));
+  if (!digits || !(in >> i >> slash >> n) || slash != '/' || in.get(rest) || i < 1 || i > n ||
+      n > 1000000)
+    throw UsageError("--shard " + shard + ": give I/N, whole numbers with 1 <= I <= N (e.g. 2/4)");
+  if (n > config->scenes.size())
+    throw UsageError("--shard " + shard + ": " + config->file + " has " +
+                     std::to_string(config->scenes.size()) + " scene(s) or problems, fewer than " +
+                     std::to_string(n) + " shards; give at most " +
+                     std::to_string(config->scenes.size()));
+  BenchConfig kept = *config;
+  kept.scenes.clear();
+  kept.scene_labels.clear();
+  kept.first_runs.clear();
+  for (std::size_t s = i - 1; s < config->scenes.size(); s += n) {
+    kept.scenes.push_back(config->scenes[s]);
+    if (s < config->scene_labels.size()) kept.scene_labels.push_back(config->scene_labels[s]);
+    if (s < config->first_runs.size()) kept.first_runs.push_back(config->first_runs[s]);
+  }
+  *config = kept;
+}
 
 std::string timestamp(const char* format) {
   const std::time_t now = std::time(nullptr);
@@ -244,7 +277,8 @@ int run_bench(int argc, char** argv) {
   std::vector<char*> args_v;
   for (std::string& word : words) args_v.push_back(word.data());
   const CommandLine args(int(args_v.size()), args_v.data(), 1,
-                         {"out", "jobs", "baseline", "save-baseline", "report"}, {"no-plots"});
+                         {"out", "jobs", "baseline", "save-baseline", "report", "shard"},
+                         {"no-plots"});
   if (args.positionals().size() != 1)
     throw UsageError("gplan-bench takes one configuration file (benchmarks/config/*.yaml), not " +
                      std::to_string(args.positionals().size()) + "; give exactly one");
@@ -255,6 +289,8 @@ int run_bench(int argc, char** argv) {
   const bool report = args.has("report");
   if (report && args.has("out"))
     throw UsageError("--report DIR reads an earlier run's folder; leave out --out");
+  if (report && args.has("shard"))
+    throw UsageError("--report DIR summarises the records in DIR/results.csv; leave out --shard");
 
   // Inputs and outputs checked before any work.
   std::vector<gplanner::NamedFile> inputs{{"the configuration", config_file}};
@@ -264,7 +300,7 @@ int run_bench(int argc, char** argv) {
   gplanner::check_output_paths(outputs, inputs);
   BenchConfig config = load_bench_config(config_file);
   if (config.kind == "error-time" || config.kind == "broad-phase") {
-    for (const char* option : {"baseline", "save-baseline", "report", "jobs"}) {
+    for (const char* option : {"baseline", "save-baseline", "report", "jobs", "shard"}) {
       if (args.has(option))
         throw UsageError(std::string("--") + option + " does not apply to the " + config.kind +
                          " study (" + config_file + "); leave it out");
@@ -294,6 +330,7 @@ int run_bench(int argc, char** argv) {
   // is made (they are kept there, in problems/).
   const ScratchFolder generated(config.problem_set ? "gplan-bench-problems" : "");
   if (config.problem_set) name_problem_scenes(generated.path(), &config);
+  if (args.has("shard")) keep_shard(args.text("shard", ""), &config);
   for (const auto& scene : config.scenes) inputs.push_back({"a scene of the configuration", scene});
   gplanner::check_output_paths(outputs, inputs);
   check_output_folder(dir);

@@ -25,6 +25,7 @@
 #include <thread>
 #include <vector>
 
+#include "gplanner/common/parallel_for.h"
 #include "gplanner/knn_gpu/nearest_neighbors.h"
 
 namespace {
@@ -185,7 +186,7 @@ int run(const Options& options) {
        << static_cast<double>(stats.candidate_pairs) / (static_cast<double>(n) * n);
 
   if (options.cpu) {
-    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    const int threads = gplanner::resolve_thread_count(0);
     const auto start = std::chrono::steady_clock::now();
     const NeighborTable on_cpu = gplanner::all_nearest_neighbors_cpu(metric, points.data(), n, k);
     const double cpu_ms = milliseconds_since(start);

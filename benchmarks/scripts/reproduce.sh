@@ -62,7 +62,9 @@
 #                 (benchmarks/config/motionbenchmaker_panda.yaml's
 #                 planners; MBM_SCENARIOS="a b": those scenario folders
 #                 only, MBM_FIRST=N: the first N problems of each;
-#                 MBM_OUT: the folder's name, default mbm)
+#                 MBM_SHARD=I/N: every N-th problem from the I-th, gplan-bench's
+#                 --shard, for N GPUs or machines; MBM_OUT: the folder's name,
+#                 default mbm)
 #    Every call also writes OUT_DIR/machine.txt (GPU, driver, CPU, commit, date,
 #    tables). Progress goes to stderr. The exit status is 1 when a program failed (the
 #    other tables still run). Where one command may run at most 10 minutes, split the
@@ -294,7 +296,7 @@ for t in "${tables[@]}"; do
         sed -n '/^planners:/,$p' benchmarks/config/motionbenchmaker_panda.yaml
       } > "$config"
       bench_config "$config" "$out/${MBM_OUT:-mbm}" --jobs $((cores > 5 ? cores - 4 : 1)) \
-        || failed+=("$t")
+        ${MBM_SHARD:+--shard "$MBM_SHARD"} || failed+=("$t")
       ;;
   esac
 done

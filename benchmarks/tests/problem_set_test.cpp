@@ -53,8 +53,9 @@ goal_constraints:
       - {joint_name: elbow, position: -0.5}
 )";
 
-TEST(ProblemSet, RunsEveryProblemUnderItsScenarioAndCountsTheInvalidOnes) {
-  const ScratchFolder folder;
+// Two scenarios of two problems each, "front"'s second with its start in collision; the
+// configuration's path.
+std::string write_problem_set(const ScratchFolder& folder) {
   folder.write("robot/arm.urdf", kArmUrdf);
   folder.write("robot/arm.srdf", kArmSrdf);
   for (const char* scenario : {"beside", "front"}) {
@@ -64,11 +65,16 @@ TEST(ProblemSet, RunsEveryProblemUnderItsScenarioAndCountsTheInvalidOnes) {
     folder.write(dir + "scene0002.yaml", planning_scene(std::string(scenario) == "front"));
     folder.write(dir + "request0002.yaml", kRequest);
   }
-  const std::string config = folder.write(
+  return folder.write(
       "set.yaml",
       "name: set\nkind: planning\nmotionbenchmaker:\n  problems: problems\n  robot: {urdf: "
       "robot/arm.urdf, srdf: robot/arm.srdf}\nplanners: [ours-lazyprm@cpu]\nruns: 1\n"
       "time_limit: 20\n");
+}
+
+TEST(ProblemSet, RunsEveryProblemUnderItsScenarioAndCountsTheInvalidOnes) {
+  const ScratchFolder folder;
+  const std::string config = write_problem_set(folder);
   const std::string out = folder.path() + "/out";
   const CommandResult run =
       run_gplan_bench(shell_quoted(config) + " -o " + shell_quoted(out) + " --no-plots");
@@ -100,6 +106,47 @@ TEST(ProblemSet, RunsEveryProblemUnderItsScenarioAndCountsTheInvalidOnes) {
   // The problems' scene files are kept with the results.
   EXPECT_TRUE(fs::is_regular_file(out + "/problems/front.0002.yaml"));
   EXPECT_TRUE(fs::is_regular_file(out + "/ompl/beside.log"));
+}
+
+// --shard I/N: shard I runs every N-th problem from the I-th, with its run number (the
+// problem's index in its scenario); the shards' records joined are the whole set's, and
+// --report over them gives the whole set's summary.
+TEST(ProblemSet, ShardsRunEveryNthProblemAndJoinIntoTheWholeSet) {
+  const ScratchFolder folder;
+  const std::string config = write_problem_set(folder);
+  // Problems in order: beside.0001, beside.0002, front.0001, front.0002 (invalid).
+  std::string joined;
+  for (const int shard : {1, 2}) {
+    const std::string out = folder.path() + "/shard" + std::to_string(shard);
+    const CommandResult run =
+        run_gplan_bench(shell_quoted(config) + " -o " + shell_quoted(out) + " --shard " +
+                        std::to_string(shard) + "/2 --no-plots");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const std::vector<BenchRecord> records = read_bench_csv(out + "/results.csv");
+    ASSERT_EQ(records.size(), 2u) << run.output;
+    for (const BenchRecord& r : records) {
+      EXPECT_EQ(r.run, shard - 1) << r.scene;  // the problem's index, not the shard's
+      EXPECT_EQ(r.status == "invalid", shard == 2 && r.scene == "front") << r.scene;
+    }
+    std::string csv = read_file(out + "/results.csv");
+    if (shard > 1) csv.erase(0, csv.find('\n') + 1);  // one header
+    joined += csv;
+  }
+  folder.write("joined/results.csv", joined);
+  const CommandResult report =
+      run_gplan_bench(shell_quoted(config) + " --report " +
+                      shell_quoted(folder.path() + "/joined") + " --no-plots");
+  ASSERT_EQ(report.exit_code, 0) << report.output;
+  EXPECT_NE(report.output.find("2 / 2 / 2"), std::string::npos) << report.output;  // beside
+  EXPECT_NE(report.output.find("1 / 1 / 2"), std::string::npos) << report.output;  // front
+  for (const char* bad : {"0/2", "3/2", "2", "1/0", "a/2", "1/2x", "-1/2", "1/5"}) {
+    const CommandResult run =
+        run_gplan_bench(shell_quoted(config) + " -o " + shell_quoted(folder.path() + "/bad") +
+                        " --shard " + bad + " --no-plots");
+    EXPECT_EQ(run.exit_code, 2) << bad << ": " << run.output;
+    EXPECT_NE(run.output.find("--shard"), std::string::npos) << bad << ": " << run.output;
+    EXPECT_FALSE(fs::exists(folder.path() + "/bad")) << bad;
+  }
 }
 
 TEST(ProblemSet, MotionBenchMakersPandaFirstProblemOfEveryScenario) {

@@ -1,6 +1,7 @@
 #include "gplanner/common/parallel_for.h"
 
 #include <pthread.h>
+#include <sched.h>
 
 #include <algorithm>
 #include <atomic>
@@ -144,8 +145,16 @@ class HelperPool {
 
 int resolve_thread_count(int requested) {
   if (requested > 0) return std::min(requested, kMaxThreads);
-  // Asked once: it is a query to the system, and small calls ask in every loop.
-  static const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // Asked once: it is a query to the system, and small calls ask in every loop. The CPUs
+  // this process may run on (taskset, a container's or a batch job's cpuset), as
+  // nproc counts them; the machine's count where the mask cannot be read.
+  static const int hardware = [] {
+    cpu_set_t mask;
+    CPU_ZERO(&mask);
+    if (sched_getaffinity(0, sizeof(mask), &mask) == 0 && CPU_COUNT(&mask) > 0)
+      return CPU_COUNT(&mask);
+    return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  }();
   return hardware;
 }
 

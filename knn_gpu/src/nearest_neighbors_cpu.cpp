@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "gplanner/common/parallel_for.h"
 #include "gplanner/knn_gpu/detail/metric_bounds.h"
 #include "gplanner/knn_gpu/nearest_neighbors.h"
 #include "knn_checks.h"
@@ -66,8 +67,7 @@ class BestK {
 // Runs row(r, best) for every r in [0, rows), handing out blocks of rows to the threads.
 template <typename RowFunction>
 void for_each_row(std::size_t rows, int k, int threads, const RowFunction& row) {
-  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t wanted = threads > 0 ? static_cast<std::size_t>(threads) : hardware;
+  const std::size_t wanted = static_cast<std::size_t>(resolve_thread_count(threads));
   const std::size_t count = std::max<std::size_t>(1, std::min(wanted, rows));
   constexpr std::size_t kBlock = 16;
   std::atomic<std::size_t> next{0};

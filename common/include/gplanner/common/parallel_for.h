@@ -11,8 +11,8 @@ namespace gplanner {
 // system's threads, not add cores.
 inline constexpr int kMaxThreads = 1024;
 
-// Number of threads to use for `requested` (0: all hardware threads; at most
-// kMaxThreads).
+// Number of threads to use for `requested` (0: one per CPU this process may run on, as
+// `nproc` counts them under taskset or a cpuset; at most kMaxThreads).
 int resolve_thread_count(int requested);
 
 // Calls body(begin, end, thread) for disjoint chunks covering [0, n); `thread` is in

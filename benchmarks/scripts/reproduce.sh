@@ -82,7 +82,8 @@
 # 3. Back on the build machine: copy OUT_DIR to benchmarks/runs/NAME/ and print the tables
 #    with benchmarks/scripts/format_tables.sh benchmarks/runs/NAME [TABLE...].
 #
-# GPU_BUNDLE: the bundle folder (default .gpu).
+# GPU_BUNDLE: the bundle folder (default .gpu). BENCH_SECONDS: gplan-bench runs are
+# stopped (SIGTERM) after this long, keeping their runs done in results.partial.csv.
 set -euo pipefail
 
 usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; }
@@ -178,7 +179,8 @@ time_limit_table() {  # one JSON line per run: the run's --json line and the wal
 bench_config() {  # gplan-bench CONFIG into OUT_SUBDIR; its exits 3 and 5 are findings
   local config=$1 dir=$2 status=0
   shift 2
-  "$run" "$bin/gplan-bench" "$config" -o "$dir" --no-plots "$@" || status=$?
+  ${BENCH_SECONDS:+timeout -s TERM "$BENCH_SECONDS"} "$run" "$bin/gplan-bench" "$config" \
+    -o "$dir" --no-plots "$@" || status=$?
   case $status in
     0) ;;
     3) say "$config: a returned path failed the FCL re-check (see $dir/summary.txt)" ;;

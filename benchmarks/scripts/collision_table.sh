@@ -23,7 +23,7 @@ for name in pr2_reach pr2_base_arm; do
   [ -f "scenes/$name.yaml" ] && scenes+=("scenes/$name.yaml:100000")
 done
 if [ -n "$data" ]; then
-  bench/real_pr2_scene.sh "$data" > "$scratch/real_pr2.yaml"
+  benchmarks/scripts/real_pr2_scene.sh "$data" > "$scratch/real_pr2.yaml"
   scenes+=("$scratch/real_pr2.yaml:100000")
 fi
 # With --agreement: 100,000 configurations per scene (Talos too), every gpu traversal

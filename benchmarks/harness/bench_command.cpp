@@ -219,6 +219,7 @@ int conclude(const BenchConfig& config, const std::vector<BenchRecord>& records,
   summary << "gplan bench " << config.name << " (" << config.kind << ")\n\n";
   print_summary(summary, groups);
   if (config.problem_set) print_problem_set_summary(summary, records);
+  print_stage_summary(summary, records);
   int failed_paths = 0;
   for (const GroupSummary& g : groups) failed_paths += g.path_failures;
   if (failed_paths) {

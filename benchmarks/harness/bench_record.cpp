@@ -76,20 +76,32 @@ long long parse_count(const std::string& field) {
   return std::stoll(field);
 }
 
-// The columns of CSVs written before check_time_s (runs until issue 22).
-const std::vector<std::string>& columns_before_check_time() {
-  static const std::vector<std::string> columns = [] {
-    std::vector<std::string> all = bench_csv_columns();
-    all.erase(std::find(all.begin(), all.end(), "check_time_s"));
-    return all;
-  }();
+// The columns added since the first CSVs, newest last: a CSV of an earlier version has
+// the columns of this one less those added after it.
+const std::vector<std::string>& stage_columns() {
+  static const std::vector<std::string> columns = {"sampling_s", "state_checks_s", "knn_s",
+                                                   "search_s",   "edge_checks_s",  "rounds"};
   return columns;
 }
 
-// One record from its fields: as many as bench_csv_columns(), or, with_check_time false
-// (CSVs of runs until issue 22), all but check_time_s.
-BenchRecord record_from_fields(const std::vector<std::string>& f, bool with_check_time = true) {
-  const auto& columns = with_check_time ? bench_csv_columns() : columns_before_check_time();
+// What a CSV's header says it holds.
+struct CsvLayout {
+  bool check_time = true;  // check_time_s (from issue 22)
+  bool stages = true;      // stage_columns() (from issue 33)
+};
+
+std::vector<std::string> columns_of(CsvLayout layout) {
+  std::vector<std::string> all = bench_csv_columns();
+  if (!layout.stages) {
+    for (const std::string& c : stage_columns()) all.erase(std::find(all.begin(), all.end(), c));
+  }
+  if (!layout.check_time) all.erase(std::find(all.begin(), all.end(), "check_time_s"));
+  return all;
+}
+
+// One record from its fields, as many as the layout's columns.
+BenchRecord record_from_fields(const std::vector<std::string>& f, CsvLayout layout = {}) {
+  const std::vector<std::string> columns = columns_of(layout);
   if (f.size() != columns.size()) {
     throw std::runtime_error(std::to_string(f.size()) + " fields, not " +
                              std::to_string(columns.size()));
@@ -112,12 +124,20 @@ BenchRecord record_from_fields(const std::vector<std::string>& f, bool with_chec
     r.length = parse_number(f[column++]);
     r.simplified_length = parse_number(f[column++]);
     r.checks = parse_count(f[column++]);
-    if (with_check_time) r.check_time_s = parse_number(f[column++]);
+    if (layout.check_time) r.check_time_s = parse_number(f[column++]);
     r.graph_states = parse_count(f[column++]);
     r.memory_mb = parse_number(f[column++]);
     r.path_check = f[column++];
     r.work = parse_count(f[column++]);
     r.collisions = parse_count(f[column++]);
+    if (layout.stages) {
+      r.sampling_s = parse_number(f[column++]);
+      r.state_checks_s = parse_number(f[column++]);
+      r.knn_s = parse_number(f[column++]);
+      r.search_s = parse_number(f[column++]);
+      r.edge_checks_s = parse_number(f[column++]);
+      r.rounds = parse_count(f[column++]);
+    }
     r.note = f[column++];
     return r;
   } catch (const std::exception& e) {
@@ -129,11 +149,15 @@ BenchRecord record_from_fields(const std::vector<std::string>& f, bool with_chec
 
 const std::vector<std::string>& bench_csv_columns() {
   static const std::vector<std::string> columns = {
-      "experiment", "scene",  "planner",       "checker",         "run",
-      "seed",       "status", "solved",        "time_s",          "simplify_time_s",
-      "length",     "simplified_length",       "checks",          "check_time_s", "graph_states",
-      "memory_mb",  "path_check",              "work",            "collisions",
-      "note"};
+      "experiment",      "scene",        "planner",
+      "checker",         "run",          "seed",
+      "status",          "solved",       "time_s",
+      "simplify_time_s", "length",       "simplified_length",
+      "checks",          "check_time_s", "graph_states",
+      "memory_mb",       "path_check",   "work",
+      "collisions",      "sampling_s",   "state_checks_s",
+      "knn_s",           "search_s",     "edge_checks_s",
+      "rounds",          "note"};
   return columns;
 }
 
@@ -148,9 +172,11 @@ void write_bench_csv_line(std::ostream& out, const BenchRecord& r) {
       << quoted(r.checker) << ',' << r.run << ',' << r.seed << ',' << quoted(r.status) << ','
       << (r.solved ? 1 : 0) << ',' << number(r.time_s) << ',' << number(r.simplify_time_s) << ','
       << number(r.length) << ',' << number(r.simplified_length) << ',' << count(r.checks) << ','
-      << number(r.check_time_s) << ','
-      << count(r.graph_states) << ',' << number(r.memory_mb) << ',' << quoted(r.path_check)
-      << ',' << count(r.work) << ',' << count(r.collisions) << ',' << quoted(r.note) << "\n";
+      << number(r.check_time_s) << ',' << count(r.graph_states) << ',' << number(r.memory_mb) << ','
+      << quoted(r.path_check) << ',' << count(r.work) << ',' << count(r.collisions) << ','
+      << number(r.sampling_s) << ',' << number(r.state_checks_s) << ',' << number(r.knn_s) << ','
+      << number(r.search_s) << ',' << number(r.edge_checks_s) << ',' << count(r.rounds) << ','
+      << quoted(r.note) << "\n";
 }
 
 BenchRecord parse_bench_csv_record(const std::string& text) {
@@ -164,9 +190,8 @@ BenchRecord parse_bench_csv_record(const std::string& text) {
 std::vector<BenchRecord> read_bench_csv(const std::string& file) {
   std::ifstream in(file);
   if (!in) throw std::runtime_error(file + ": cannot be read");
-  const auto& columns = bench_csv_columns();
   std::vector<BenchRecord> records;
-  bool with_check_time = true;
+  CsvLayout layout;
   std::string line;
   int line_number = 0;
   while (std::getline(in, line)) {
@@ -179,14 +204,20 @@ std::vector<BenchRecord> read_bench_csv(const std::string& file) {
       throw std::runtime_error(file + ":" + std::to_string(first_line) + ": " + e.what());
     }
     if (first_line == 1) {
-      if (f != columns && f != columns_before_check_time())
-        throw std::runtime_error(file + ":1: not a gplan-bench CSV (the header differs)");
-      with_check_time = f == columns;
+      bool known = false;
+      for (const CsvLayout candidate :
+           {CsvLayout{true, true}, CsvLayout{true, false}, CsvLayout{false, false}}) {
+        if (f == columns_of(candidate)) {
+          layout = candidate;
+          known = true;
+        }
+      }
+      if (!known) throw std::runtime_error(file + ":1: not a gplan-bench CSV (the header differs)");
       continue;
     }
     if (f.size() == 1 && f[0].empty()) continue;
     try {
-      records.push_back(record_from_fields(f, with_check_time));
+      records.push_back(record_from_fields(f, layout));
     } catch (const std::exception& e) {
       throw std::runtime_error(file + ":" + std::to_string(first_line) + ": " + e.what());
     }

@@ -46,7 +46,15 @@ struct BenchRecord {
   std::string path_check;
   long long work = -1;        // query tables: configurations or edges in the batch
   long long collisions = -1;  // query tables: of them, found colliding (or invalid)
-  std::string note;           // free text: a fallback, an error message, a re-check failure
+  // Our planners: where time_s went, stage by stage (PlanTimes; shortcutting is
+  // simplify_time_s), and the roadmap's rounds. Not measured for OMPL's planners.
+  double sampling_s = kNotMeasured;
+  double state_checks_s = kNotMeasured;
+  double knn_s = kNotMeasured;
+  double search_s = kNotMeasured;
+  double edge_checks_s = kNotMeasured;
+  long long rounds = -1;
+  std::string note;  // free text: a fallback, an error message, a re-check failure
 };
 
 // The CSV header line's fields, in order.
@@ -60,8 +68,9 @@ void write_bench_csv_line(std::ostream& out, const BenchRecord& record);
 // One record from one line as write_bench_csv_line writes it (its newline optional);
 // throws std::runtime_error naming the column at fault.
 BenchRecord parse_bench_csv_record(const std::string& text);
-// Reads a CSV written by write_bench_csv_*; throws std::runtime_error naming the file,
-// line and column on anything else.
+// Reads a CSV written by write_bench_csv_* (also those of earlier versions: without the
+// stage columns, until issue 33; without check_time_s, until issue 22); throws
+// std::runtime_error naming the file, line and column on anything else.
 std::vector<BenchRecord> read_bench_csv(const std::string& file);
 
 }  // namespace gplan

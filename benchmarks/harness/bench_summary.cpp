@@ -37,6 +37,19 @@ std::string seconds(double s) {
   return text.str();
 }
 
+// Rows of cells in columns two spaces apart, each as wide as its widest cell.
+void print_aligned(std::ostream& out, const std::vector<std::vector<std::string>>& rows) {
+  std::vector<std::size_t> widths(rows[0].size(), 0);
+  for (const auto& row : rows)
+    for (std::size_t c = 0; c < row.size(); ++c) widths[c] = std::max(widths[c], row[c].size());
+  for (const auto& row : rows) {
+    std::string line;
+    for (std::size_t c = 0; c < row.size(); ++c)
+      line += row[c] + std::string(c + 1 < row.size() ? widths[c] - row[c].size() + 2 : 0, ' ');
+    out << line << "\n";
+  }
+}
+
 std::string range(double low, double high) {
   return std::isfinite(low) ? seconds(low) + " - " + seconds(high) : "-";
 }
@@ -179,6 +192,58 @@ void print_summary(std::ostream& out, const std::vector<GroupSummary>& groups) {
   }
 }
 
+void print_stage_summary(std::ostream& out, const std::vector<BenchRecord>& records) {
+  struct Stages {
+    int runs = 0;
+    std::vector<double> total, sampling, states, knn, search, edges, shortcut, other, rounds;
+  };
+  std::vector<std::string> order;
+  std::map<std::string, Stages> groups;
+  for (const BenchRecord& r : records) {
+    if (!std::isfinite(r.sampling_s)) continue;
+    const std::string key = r.scene + " " + r.planner + "@" + r.checker;
+    if (!groups.count(key)) order.push_back(key);
+    Stages& g = groups[key];
+    ++g.runs;
+    if (!r.solved) continue;
+    const double shortcut = std::isfinite(r.simplify_time_s) ? r.simplify_time_s : 0;
+    g.total.push_back(r.time_s);
+    g.sampling.push_back(r.sampling_s);
+    g.states.push_back(r.state_checks_s);
+    g.knn.push_back(r.knn_s);
+    g.search.push_back(r.search_s);
+    g.edges.push_back(r.edge_checks_s);
+    g.shortcut.push_back(shortcut);
+    g.other.push_back(r.time_s - r.sampling_s - r.state_checks_s - r.knn_s - r.search_s -
+                      r.edge_checks_s - shortcut);
+    if (r.rounds >= 0) g.rounds.push_back(double(r.rounds));
+  }
+  if (order.empty()) return;
+  std::vector<std::vector<std::string>> rows;
+  rows.push_back({"scene", "planner@checker", "solved", "plan time", "sampling", "state checks",
+                  "k-NN", "search", "edge checks", "shortcutting", "other", "rounds"});
+  for (const std::string& key : order) {
+    const Stages& g = groups.at(key);
+    const std::size_t space = key.find(' ');
+    std::ostringstream solved, rounds;
+    solved << g.total.size() << "/" << g.runs;
+    const double median_rounds = median_of(g.rounds);
+    if (std::isfinite(median_rounds)) {
+      rounds << median_rounds;
+    } else {
+      rounds << "-";
+    }
+    rows.push_back({key.substr(0, space), key.substr(space + 1), solved.str(),
+                    seconds(median_of(g.total)), seconds(median_of(g.sampling)),
+                    seconds(median_of(g.states)), seconds(median_of(g.knn)),
+                    seconds(median_of(g.search)), seconds(median_of(g.edges)),
+                    seconds(median_of(g.shortcut)), seconds(median_of(g.other)), rounds.str()});
+  }
+  out << "\nstages (our planners' solved runs: the median of each; other: the plan time beyond "
+         "the stages):\n";
+  print_aligned(out, rows);
+}
+
 void print_problem_set_summary(std::ostream& out, const std::vector<BenchRecord>& records) {
   struct Tally {
     int total = 0, invalid = 0, solved = 0;
@@ -226,15 +291,7 @@ void print_problem_set_summary(std::ostream& out, const std::vector<BenchRecord>
   }
   out << "\nproblems (median and p95 over the valid problems' runs, a run without a path at its "
          "full time):\n";
-  std::vector<std::size_t> widths(rows[0].size(), 0);
-  for (const auto& row : rows)
-    for (std::size_t c = 0; c < row.size(); ++c) widths[c] = std::max(widths[c], row[c].size());
-  for (const auto& row : rows) {
-    std::string line;
-    for (std::size_t c = 0; c < row.size(); ++c)
-      line += row[c] + std::string(c + 1 < row.size() ? widths[c] - row[c].size() + 2 : 0, ' ');
-    out << line << "\n";
-  }
+  print_aligned(out, rows);
   std::size_t invalid = 0;
   for (const BenchRecord& r : records) invalid += r.status == "invalid";
   if (invalid == 0) return;

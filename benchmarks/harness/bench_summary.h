@@ -50,6 +50,12 @@ void print_summary(std::ostream& out, const std::vector<GroupSummary>& groups);
 // time; then the invalid problems and why.
 void print_problem_set_summary(std::ostream& out, const std::vector<BenchRecord>& records);
 
+// Where our planners' time goes (records with stage times): per scene and
+// planner@checker, over the solved runs, the median plan time and the median of each
+// stage (sampling, state checks, k-NN, search, edge checks, shortcutting, and what the
+// plan time holds beyond them), and the median rounds. Nothing when no record has them.
+void print_stage_summary(std::ostream& out, const std::vector<BenchRecord>& records);
+
 // The median of `values` (NaN when empty).
 double median_of(std::vector<double> values);
 

@@ -174,6 +174,12 @@ BenchRecord run_ours(const gplanner::Scene& scene, const BenchConfig& config,
   if (!result.solved) record.note = result.stop_reason;
   record.time_s = result.times.total;
   record.simplify_time_s = result.times.shortcutting;
+  record.sampling_s = result.times.sampling;
+  record.state_checks_s = result.times.state_checks;
+  record.knn_s = result.times.knn;
+  record.search_s = result.times.search;
+  record.edge_checks_s = result.times.edge_checks;
+  record.rounds = static_cast<long long>(result.rounds);
   if (result.solved) {
     record.length = result.length_before_shortcut;
     record.simplified_length = result.length;

@@ -38,9 +38,13 @@ from matplotlib.patches import Patch  # noqa: E402
 COLUMNS = ["experiment", "scene", "planner", "checker", "run", "seed", "status", "solved",
            "time_s", "simplify_time_s", "length", "simplified_length", "checks",
            "check_time_s", "graph_states", "memory_mb", "path_check", "work", "collisions",
+           "sampling_s", "state_checks_s", "knn_s", "search_s", "edge_checks_s", "rounds",
            "note"]
-# The columns of CSVs written before check_time_s (runs until issue 22).
-COLUMNS_BEFORE_CHECK_TIME = [c for c in COLUMNS if c != "check_time_s"]
+STAGE_COLUMNS = ["sampling_s", "state_checks_s", "knn_s", "search_s", "edge_checks_s", "rounds"]
+# The columns of CSVs written before the stage columns (runs until issue 33), and before
+# check_time_s (runs until issue 22).
+COLUMNS_BEFORE_STAGES = [c for c in COLUMNS if c not in STAGE_COLUMNS]
+COLUMNS_BEFORE_CHECK_TIME = [c for c in COLUMNS_BEFORE_STAGES if c != "check_time_s"]
 QUERY_TABLES = {"collision-queries": "collision queries (milestone computation)",
                 "local-planning": "local planning (roadmap edges)"}
 PLANNER_ORDER = ["ours-lazyprm", "ours-prm", "ompl-rrtconnect", "ompl-prm", "ompl-lazyprm"]
@@ -82,7 +86,8 @@ def run_of(row):
 
 def read_runs(path):
     """The CSV's records as Runs; BadCsv on anything bench_record.cpp would not write."""
-    runs = read_csv(path, (COLUMNS, COLUMNS_BEFORE_CHECK_TIME), "a gplan-bench CSV", run_of)
+    runs = read_csv(path, (COLUMNS, COLUMNS_BEFORE_STAGES, COLUMNS_BEFORE_CHECK_TIME),
+                    "a gplan-bench CSV", run_of)
     if not runs:
         raise BadCsv("%s: holds no runs, nothing to plot" % path)
     return runs

@@ -100,24 +100,46 @@ TEST(BenchSummary, TheShareOfThePlanTimeInChecksIsTheMedianOverRuns) {
   EXPECT_NE(table.str().find(" 75% "), std::string::npos) << table.str();
 }
 
-TEST(BenchRecord, CsvsWrittenBeforeTheCheckTimeColumnAreStillRead) {
+TEST(BenchRecord, CsvsOfEarlierVersionsAreStillRead) {
   const gplanner::testing::ScratchFolder folder;
-  const std::string file = folder.path() + "/old.csv";
+  const std::string before_issue22 = folder.path() + "/old.csv";
   {
-    std::ofstream out(file);
+    std::ofstream out(before_issue22);
     out << "experiment,scene,planner,checker,run,seed,status,solved,time_s,simplify_time_s,"
            "length,simplified_length,checks,graph_states,memory_mb,path_check,work,"
            "collisions,note\n"
            "e,s,ompl-prm,fcl,0,1,exact,1,2.5,,10,,300,40,20,pass,,,\n";
   }
-  const std::vector<BenchRecord> records = read_bench_csv(file);
+  const std::vector<BenchRecord> records = read_bench_csv(before_issue22);
   ASSERT_EQ(records.size(), 1u);
   EXPECT_EQ(records[0].checks, 300);
   EXPECT_EQ(records[0].graph_states, 40);
   EXPECT_TRUE(std::isnan(records[0].check_time_s));
-  // And this version's, the check time written and read back.
+  EXPECT_TRUE(std::isnan(records[0].sampling_s));
+  EXPECT_EQ(records[0].rounds, -1);
+  // Issue 22 to 32: check_time_s, no stage columns.
+  const std::string before_issue33 = folder.path() + "/issue32.csv";
+  {
+    std::ofstream out(before_issue33);
+    out << "experiment,scene,planner,checker,run,seed,status,solved,time_s,simplify_time_s,"
+           "length,simplified_length,checks,check_time_s,graph_states,memory_mb,path_check,"
+           "work,collisions,note\n"
+           "e,s,ours-lazyprm,gpu,0,1,exact,1,0.05,0.01,10,9,300,,40,20,pass,,,\n";
+  }
+  const std::vector<BenchRecord> issue32 = read_bench_csv(before_issue33);
+  ASSERT_EQ(issue32.size(), 1u);
+  EXPECT_EQ(issue32[0].graph_states, 40);
+  EXPECT_DOUBLE_EQ(issue32[0].simplify_time_s, 0.01);
+  EXPECT_TRUE(std::isnan(issue32[0].knn_s));
+  // And this version's: the check time and the stages written and read back.
   BenchRecord record = records[0];
   record.check_time_s = 1.25;
+  record.sampling_s = 0.125;
+  record.state_checks_s = 0.25;
+  record.knn_s = 0.5;
+  record.search_s = 0.0625;
+  record.edge_checks_s = 0.375;
+  record.rounds = 3;
   const std::string now = folder.path() + "/now.csv";
   {
     std::ofstream out(now);
@@ -128,6 +150,13 @@ TEST(BenchRecord, CsvsWrittenBeforeTheCheckTimeColumnAreStillRead) {
   ASSERT_EQ(again.size(), 1u);
   EXPECT_DOUBLE_EQ(again[0].check_time_s, 1.25);
   EXPECT_EQ(again[0].graph_states, 40);
+  EXPECT_DOUBLE_EQ(again[0].sampling_s, 0.125);
+  EXPECT_DOUBLE_EQ(again[0].state_checks_s, 0.25);
+  EXPECT_DOUBLE_EQ(again[0].knn_s, 0.5);
+  EXPECT_DOUBLE_EQ(again[0].search_s, 0.0625);
+  EXPECT_DOUBLE_EQ(again[0].edge_checks_s, 0.375);
+  EXPECT_EQ(again[0].rounds, 3);
+  EXPECT_EQ(again[0].note, "");
   // A record of the old width under this version's header is refused, naming the line.
   {
     std::ofstream out(now, std::ios::app);
@@ -137,9 +166,54 @@ TEST(BenchRecord, CsvsWrittenBeforeTheCheckTimeColumnAreStillRead) {
     read_bench_csv(now);
     ADD_FAILURE() << "a short record was read";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("now.csv:3: 19 fields, not 20"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("now.csv:3: 19 fields, not 26"), std::string::npos)
         << e.what();
   }
+}
+
+// Where our planners' time goes: per group, over its solved runs, the median of each
+// stage and of what lies beyond them; OMPL's groups (no stage times) left out.
+TEST(BenchSummary, StageTableOfOurPlannersSolvedRuns) {
+  std::vector<BenchRecord> records;
+  for (int i = 0; i < 3; ++i) {
+    BenchRecord r;
+    r.scene = "cage";
+    r.planner = "ours-lazyprm";
+    r.checker = "gpu";
+    r.run = i;
+    r.solved = i < 2;
+    r.time_s = i < 2 ? 1.0 + i : 10;  // 1 s and 2 s solved; a 10 s run without a path
+    r.sampling_s = 0.01;
+    r.state_checks_s = 0.1;
+    r.knn_s = 0.2;
+    r.search_s = 0.4 * (1 + i);  // 0.4 s and 0.8 s
+    r.edge_checks_s = 0.05;
+    r.simplify_time_s = 0.02;
+    r.rounds = 4 + i;
+    records.push_back(r);
+  }
+  BenchRecord ompl;
+  ompl.scene = "cage";
+  ompl.planner = "ompl-rrtconnect";
+  ompl.checker = "fcl";
+  ompl.solved = true;
+  ompl.time_s = 0.5;
+  records.push_back(ompl);
+  std::ostringstream table;
+  print_stage_summary(table, records);
+  const std::string text = table.str();
+  EXPECT_NE(text.find("stages (our planners' solved runs"), std::string::npos) << text;
+  EXPECT_NE(text.find("ours-lazyprm@gpu"), std::string::npos) << text;
+  EXPECT_EQ(text.find("ompl-rrtconnect"), std::string::npos) << text;
+  EXPECT_NE(text.find("2/3"), std::string::npos) << text;       // solved / runs
+  EXPECT_NE(text.find("1.50 s"), std::string::npos) << text;    // plan time
+  EXPECT_NE(text.find("600.0 ms"), std::string::npos) << text;  // search
+  // Other: 1 - 0.78 = 0.22 s and 2 - 1.18 = 0.82 s, median 0.52 s.
+  EXPECT_NE(text.find("520.0 ms"), std::string::npos) << text;
+  EXPECT_NE(text.find("4.5"), std::string::npos) << text;  // rounds
+  std::ostringstream none;
+  print_stage_summary(none, {ompl});
+  EXPECT_EQ(none.str(), "");
 }
 
 TEST(BenchBaseline, WithinToleranceAndEachPlantedRegression) {

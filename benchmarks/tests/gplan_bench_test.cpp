@@ -91,6 +91,19 @@ TEST(GplanBench, CiConfigurationPassesAgainstItsStoredBaselineAndAPlantedRegress
     EXPECT_LE(records[i].check_time_s, records[i].time_s) << i;
   }
   EXPECT_TRUE(std::isnan(records[0].check_time_s));
+  // Ours: where the time went, stage by stage, within the plan time; OMPL's: not measured.
+  for (std::size_t i = 0; i < 3; ++i) {
+    const BenchRecord& r = records[i];
+    const double stages = r.sampling_s + r.state_checks_s + r.knn_s + r.search_s + r.edge_checks_s +
+                          r.simplify_time_s;
+    EXPECT_GT(r.state_checks_s, 0) << i;
+    EXPECT_GT(r.search_s, 0) << i;
+    EXPECT_GT(stages, 0.5 * r.time_s) << i;
+    EXPECT_LE(stages, r.time_s * (1 + 1e-9)) << i;
+    EXPECT_GE(r.rounds, 1) << i;
+  }
+  for (std::size_t i = 3; i < records.size(); ++i) EXPECT_TRUE(std::isnan(records[i].knn_s)) << i;
+  EXPECT_NE(read_file(out + "/summary.txt").find("stages (our planners"), std::string::npos);
   // OMPL's runs differ from each other (OMPL's generator seeded per run).
   EXPECT_NE(records[3].length, records[4].length);
 

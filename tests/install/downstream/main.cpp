@@ -117,6 +117,10 @@ int main(int argc, char** argv) {
   // gplanner's lazy PRM as an OMPL planner.
   const ob::ProblemDefinitionPtr lazy_problem = problem(scene, si);
   ga::LazyPrm lazy(si, scene, checker.get());
+  // Its own seed, so that the test repeats exactly: drawn from OMPL's unseeded generator,
+  // about 1 seed in 40 leaves pr2_base_arm unsolved within a minute on the cpu backend of
+  // a loaded two-core machine (a narrow way through; issue 33).
+  lazy.options().seed = 1;
   lazy.setProblemDefinition(lazy_problem);
   if (lazy.solve(60.0) != ob::PlannerStatus::EXACT_SOLUTION) {
     std::cerr << "gplanner LazyPRM: no exact solution\n";

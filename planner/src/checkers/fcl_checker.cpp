@@ -65,7 +65,7 @@ struct FclChecker::Impl {
   std::vector<double> allowances;
   std::vector<bool> second_opinion;
   // The containment rule of the collision core (detail/containment.h), on the same
-  // components (the solid primitives as their centres: FCL's primitives are solid
+  // components (the solid spheres and cylinders as their centres: FCL's shapes are solid
   // already), in double from FCL's own poses.
   FlatSolids solids;
   std::vector<BodySolids> link_solids;

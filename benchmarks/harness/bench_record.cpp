@@ -83,24 +83,38 @@ const std::vector<std::string>& stage_columns() {
   return columns;
 }
 
-// What a CSV's header says it holds.
-struct CsvLayout {
-  bool check_time = true;  // check_time_s (from issue 22)
-  bool stages = true;      // stage_columns() (from issue 33)
-};
+// The CSV layouts gplan-bench has written: this version's; before the stage columns
+// (issues 22 to 32); before check_time_s too (until issue 22).
+enum class CsvLayout { kCurrent, kBeforeStages, kBeforeCheckTime };
 
-std::vector<std::string> columns_of(CsvLayout layout) {
-  std::vector<std::string> all = bench_csv_columns();
-  if (!layout.stages) {
+// A layout's columns, made once per layout (records are read one by one).
+const std::vector<std::string>& columns_of(CsvLayout layout) {
+  static const std::vector<std::string> current = bench_csv_columns();
+  static const std::vector<std::string> before_stages = [] {
+    std::vector<std::string> all = bench_csv_columns();
     for (const std::string& c : stage_columns()) all.erase(std::find(all.begin(), all.end(), c));
+    return all;
+  }();
+  static const std::vector<std::string> before_check_time = [] {
+    std::vector<std::string> all = before_stages;
+    all.erase(std::find(all.begin(), all.end(), "check_time_s"));
+    return all;
+  }();
+  switch (layout) {
+    case CsvLayout::kCurrent:
+      return current;
+    case CsvLayout::kBeforeStages:
+      return before_stages;
+    case CsvLayout::kBeforeCheckTime:
+      break;
   }
-  if (!layout.check_time) all.erase(std::find(all.begin(), all.end(), "check_time_s"));
-  return all;
+  return before_check_time;
 }
 
 // One record from its fields, as many as the layout's columns.
-BenchRecord record_from_fields(const std::vector<std::string>& f, CsvLayout layout = {}) {
-  const std::vector<std::string> columns = columns_of(layout);
+BenchRecord record_from_fields(const std::vector<std::string>& f,
+                               CsvLayout layout = CsvLayout::kCurrent) {
+  const std::vector<std::string>& columns = columns_of(layout);
   if (f.size() != columns.size()) {
     throw std::runtime_error(std::to_string(f.size()) + " fields, not " +
                              std::to_string(columns.size()));
@@ -123,13 +137,13 @@ BenchRecord record_from_fields(const std::vector<std::string>& f, CsvLayout layo
     r.length = parse_number(f[column++]);
     r.simplified_length = parse_number(f[column++]);
     r.checks = parse_count(f[column++]);
-    if (layout.check_time) r.check_time_s = parse_number(f[column++]);
+    if (layout != CsvLayout::kBeforeCheckTime) r.check_time_s = parse_number(f[column++]);
     r.graph_states = parse_count(f[column++]);
     r.memory_mb = parse_number(f[column++]);
     r.path_check = f[column++];
     r.work = parse_count(f[column++]);
     r.collisions = parse_count(f[column++]);
-    if (layout.stages) {
+    if (layout == CsvLayout::kCurrent) {
       r.sampling_s = parse_number(f[column++]);
       r.state_checks_s = parse_number(f[column++]);
       r.knn_s = parse_number(f[column++]);
@@ -190,7 +204,7 @@ std::vector<BenchRecord> read_bench_csv(const std::string& file) {
   std::ifstream in(file);
   if (!in) throw std::runtime_error(file + ": cannot be read");
   std::vector<BenchRecord> records;
-  CsvLayout layout;
+  CsvLayout layout = CsvLayout::kCurrent;
   std::string line;
   int line_number = 0;
   while (std::getline(in, line)) {
@@ -205,7 +219,7 @@ std::vector<BenchRecord> read_bench_csv(const std::string& file) {
     if (first_line == 1) {
       bool known = false;
       for (const CsvLayout candidate :
-           {CsvLayout{true, true}, CsvLayout{true, false}, CsvLayout{false, false}}) {
+           {CsvLayout::kCurrent, CsvLayout::kBeforeStages, CsvLayout::kBeforeCheckTime}) {
         if (f == columns_of(candidate)) {
           layout = candidate;
           known = true;

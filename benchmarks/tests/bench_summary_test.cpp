@@ -102,14 +102,11 @@ TEST(BenchSummary, TheShareOfThePlanTimeInChecksIsTheMedianOverRuns) {
 
 TEST(BenchRecord, CsvsOfEarlierVersionsAreStillRead) {
   const gplanner::testing::ScratchFolder folder;
-  const std::string before_issue22 = folder.path() + "/old.csv";
-  {
-    std::ofstream out(before_issue22);
-    out << "experiment,scene,planner,checker,run,seed,status,solved,time_s,simplify_time_s,"
-           "length,simplified_length,checks,graph_states,memory_mb,path_check,work,"
-           "collisions,note\n"
-           "e,s,ompl-prm,fcl,0,1,exact,1,2.5,,10,,300,40,20,pass,,,\n";
-  }
+  const std::string before_issue22 = folder.write(
+      "old.csv",
+      "experiment,scene,planner,checker,run,seed,status,solved,time_s,simplify_time_s,"
+      "length,simplified_length,checks,graph_states,memory_mb,path_check,work,collisions,note\n"
+      "e,s,ompl-prm,fcl,0,1,exact,1,2.5,,10,,300,40,20,pass,,,\n");
   const std::vector<BenchRecord> records = read_bench_csv(before_issue22);
   ASSERT_EQ(records.size(), 1u);
   EXPECT_EQ(records[0].checks, 300);
@@ -118,14 +115,12 @@ TEST(BenchRecord, CsvsOfEarlierVersionsAreStillRead) {
   EXPECT_TRUE(std::isnan(records[0].sampling_s));
   EXPECT_EQ(records[0].rounds, -1);
   // Issue 22 to 32: check_time_s, no stage columns.
-  const std::string before_issue33 = folder.path() + "/issue32.csv";
-  {
-    std::ofstream out(before_issue33);
-    out << "experiment,scene,planner,checker,run,seed,status,solved,time_s,simplify_time_s,"
-           "length,simplified_length,checks,check_time_s,graph_states,memory_mb,path_check,"
-           "work,collisions,note\n"
-           "e,s,ours-lazyprm,gpu,0,1,exact,1,0.05,0.01,10,9,300,,40,20,pass,,,\n";
-  }
+  const std::string before_issue33 = folder.write(
+      "issue32.csv",
+      "experiment,scene,planner,checker,run,seed,status,solved,time_s,simplify_time_s,"
+      "length,simplified_length,checks,check_time_s,graph_states,memory_mb,path_check,work,"
+      "collisions,note\n"
+      "e,s,ours-lazyprm,gpu,0,1,exact,1,0.05,0.01,10,9,300,,40,20,pass,,,\n");
   const std::vector<BenchRecord> issue32 = read_bench_csv(before_issue33);
   ASSERT_EQ(issue32.size(), 1u);
   EXPECT_EQ(issue32[0].graph_states, 40);

@@ -32,6 +32,11 @@ std::string PlanReport::text() const {
   out << std::setprecision(4) << "time        " << t.total << " s: sampling " << t.sampling
       << ", state checks " << t.state_checks << ", k-NN " << t.knn << ", search " << t.search
       << ", edge checks " << t.edge_checks << ", shortcutting " << t.shortcutting << "\n";
+  const gplanner::PlanGpuCalls& c = result.gpu_calls;
+  if (c.total > 0) {
+    out << "gpu calls   " << c.total << ": state checks " << c.state_checks << ", k-NN " << c.knn
+        << ", edge checks " << c.edge_checks << ", shortcutting " << c.shortcutting << "\n";
+  }
   for (const std::string& file : written) out << "wrote       " << terminal_text(file) << "\n";
   return out.str();
 }
@@ -69,7 +74,13 @@ nlohmann::ordered_json PlanReport::json() const {
             {"knn", t.knn},
             {"search", t.search},
             {"edge_checks", t.edge_checks},
-            {"shortcutting", t.shortcutting}}}};
+            {"shortcutting", t.shortcutting}}},
+          {"gpu_calls",
+           {{"state_checks", result.gpu_calls.state_checks},
+            {"knn", result.gpu_calls.knn},
+            {"edge_checks", result.gpu_calls.edge_checks},
+            {"shortcutting", result.gpu_calls.shortcutting},
+            {"total", result.gpu_calls.total}}}};
 }
 
 }  // namespace gplan

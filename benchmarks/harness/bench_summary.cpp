@@ -195,7 +195,8 @@ void print_summary(std::ostream& out, const std::vector<GroupSummary>& groups) {
 void print_stage_summary(std::ostream& out, const std::vector<BenchRecord>& records) {
   struct Stages {
     int runs = 0;
-    std::vector<double> total, sampling, states, knn, search, edges, shortcut, other, rounds;
+    std::vector<double> total, sampling, states, knn, search, edges, shortcut, other, rounds,
+        gpu_calls;
   };
   std::vector<std::string> order;
   std::map<std::string, Stages> groups;
@@ -217,27 +218,34 @@ void print_stage_summary(std::ostream& out, const std::vector<BenchRecord>& reco
     g.other.push_back(r.time_s - r.sampling_s - r.state_checks_s - r.knn_s - r.search_s -
                       r.edge_checks_s - shortcut);
     if (r.rounds >= 0) g.rounds.push_back(double(r.rounds));
+    if (r.gpu_calls >= 0) g.gpu_calls.push_back(double(r.gpu_calls));
   }
   if (order.empty()) return;
   std::vector<std::vector<std::string>> rows;
   rows.push_back({"scene", "planner@checker", "solved", "plan time", "sampling", "state checks",
-                  "k-NN", "search", "edge checks", "shortcutting", "other", "rounds"});
+                  "k-NN", "search", "edge checks", "shortcutting", "other", "rounds",
+                  "GPU calls"});
   for (const std::string& key : order) {
     const Stages& g = groups.at(key);
     const std::size_t space = key.find(' ');
-    std::ostringstream solved, rounds;
+    std::ostringstream solved;
     solved << g.total.size() << "/" << g.runs;
-    const double median_rounds = median_of(g.rounds);
-    if (std::isfinite(median_rounds)) {
-      rounds << median_rounds;
-    } else {
-      rounds << "-";
-    }
+    const auto count = [](const std::vector<double>& values) {
+      const double m = median_of(values);
+      std::ostringstream text;
+      if (std::isfinite(m)) {
+        text << m;
+      } else {
+        text << "-";
+      }
+      return text.str();
+    };
     rows.push_back({key.substr(0, space), key.substr(space + 1), solved.str(),
                     seconds(median_of(g.total)), seconds(median_of(g.sampling)),
                     seconds(median_of(g.states)), seconds(median_of(g.knn)),
                     seconds(median_of(g.search)), seconds(median_of(g.edges)),
-                    seconds(median_of(g.shortcut)), seconds(median_of(g.other)), rounds.str()});
+                    seconds(median_of(g.shortcut)), seconds(median_of(g.other)), count(g.rounds),
+                    count(g.gpu_calls)});
   }
   out << "\nstages (our planners' solved runs: the median of each; other: the plan time beyond "
          "the stages):\n";

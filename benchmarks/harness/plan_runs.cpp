@@ -180,6 +180,7 @@ BenchRecord run_ours(const gplanner::Scene& scene, const BenchConfig& config,
   record.search_s = result.times.search;
   record.edge_checks_s = result.times.edge_checks;
   record.rounds = static_cast<long long>(result.rounds);
+  record.gpu_calls = static_cast<long long>(result.gpu_calls.total);
   if (result.solved) {
     record.length = result.length_before_shortcut;
     record.simplified_length = result.length;

@@ -4,9 +4,12 @@
 // hardware threads, and OMPL's NearestNeighborsGNAT with the same metric (built, then
 // queried for every milestone on one thread, as OMPL's planners use it), and prints one
 // JSON line with the times, their ratios, and how often the neighbour sets agree.
+// With --arm J: milestones of an arm of J revolute joints instead (no base, each joint
+// uniform in [-2.9, 2.9] rad, as the Panda's roadmaps), for the sizes a plan's first
+// rounds have (--points 2002: the first round's k-NN).
 //
 // usage: gplanner_knn_bench [--points N] [--k K] [--runs R] [--seed S] [--no-cpu]
-//                           [--no-gnat]
+//                           [--no-gnat] [--arm J]
 
 #include <ompl/datastructures/NearestNeighborsGNAT.h>
 
@@ -40,6 +43,7 @@ struct Options {
   unsigned seed = 2024;
   bool cpu = true;
   bool gnat = true;
+  int arm_joints = 0;  // 0: the piano
 };
 
 Options parse(int argc, char** argv) {
@@ -60,6 +64,10 @@ Options parse(int argc, char** argv) {
       options.seed = static_cast<unsigned>(std::stoul(value()));
     } else if (arg == "--no-cpu") {
       options.cpu = false;
+    } else if (arg == "--arm") {
+      options.arm_joints = std::stoi(value());
+      if (options.arm_joints < 1 || options.arm_joints > 64)
+        throw std::invalid_argument("--arm takes 1 to 64 joints");
     } else if (arg == "--no-gnat") {
       options.gnat = false;
     } else {
@@ -89,6 +97,15 @@ std::vector<float> piano_milestones(std::size_t n, unsigned seed) {
     p[5] = static_cast<float>(a * std::cos(two_pi * u2));
     p[6] = static_cast<float>(b * std::sin(two_pi * u3));
   }
+  return q;
+}
+
+// Arm milestones, shape [n, joints]: each joint uniform in [-2.9, 2.9].
+std::vector<float> arm_milestones(std::size_t n, int joints, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> joint(-2.9, 2.9);
+  std::vector<float> q(n * joints);
+  for (float& x : q) x = static_cast<float>(joint(rng));
   return q;
 }
 
@@ -141,20 +158,29 @@ double agreement(const ConfigurationMetric& metric, const std::vector<float>& po
 // A milestone as OMPL's nearest-neighbour structures hold it.
 struct Milestone {
   int index;
-  const float* q;  // shape [7]
+  const float* q;  // shape [width]
   bool operator==(const Milestone& other) const { return index == other.index; }
   bool operator!=(const Milestone& other) const { return index != other.index; }
 };
 
 int run(const Options& options) {
   ConfigurationMetric metric;
-  metric.base = gplanner::MetricBase::kFloating;
   const std::size_t n = options.points;
   const int k = options.k;
-  const std::vector<float> points = piano_milestones(n, options.seed);
+  std::vector<float> points;
+  if (options.arm_joints > 0) {
+    metric.joint_count = options.arm_joints;
+    points = arm_milestones(n, options.arm_joints, options.seed);
+  } else {
+    metric.base = gplanner::MetricBase::kFloating;
+    points = piano_milestones(n, options.seed);
+  }
+  const int width = metric.width();
 
   std::ostringstream json;
-  json << "{\"benchmark\":\"knn\",\"robot\":\"piano\",\"points\":" << n << ",\"k\":" << k;
+  json << "{\"benchmark\":\"knn\",\"robot\":\""
+       << (options.arm_joints > 0 ? "arm-" + std::to_string(options.arm_joints) : "piano")
+       << "\",\"points\":" << n << ",\"k\":" << k;
 
   // GPU: one warm-up call (device buffers, module load), then the timed runs.
   std::string reason;
@@ -163,7 +189,9 @@ int run(const Options& options) {
     return 1;
   }
   gplanner::GpuNearestNeighbors gpu;
+  const auto first_call = std::chrono::steady_clock::now();
   NeighborTable on_gpu = gpu.all_nearest(metric, points.data(), n, k);
+  const double first_call_ms = milliseconds_since(first_call);
   std::vector<double> gpu_ms, search_ms, wall_ms;
   for (int r = 0; r < options.runs; ++r) {
     const auto start = std::chrono::steady_clock::now();
@@ -176,7 +204,7 @@ int run(const Options& options) {
   const double gpu_median = median(gpu_ms);
   json << ",\"device\":\"" << gpu.device_name() << "\",\"gpu_runs\":" << options.runs
        << ",\"gpu_ms\":" << gpu_median << ",\"gpu_search_ms\":" << median(search_ms)
-       << ",\"gpu_wall_ms\":" << median(wall_ms)
+       << ",\"gpu_wall_ms\":" << median(wall_ms) << ",\"gpu_first_call_wall_ms\":" << first_call_ms
        << ",\"gpu_ms_min\":" << *std::min_element(gpu_ms.begin(), gpu_ms.end())
        << ",\"gpu_ms_max\":" << *std::max_element(gpu_ms.begin(), gpu_ms.end())
        << ",\"tiles\":" << stats.tiles << ",\"tiles_loaded\":" << stats.tiles_visited
@@ -202,7 +230,7 @@ int run(const Options& options) {
     });
     std::vector<Milestone> milestones(n);
     for (std::size_t i = 0; i < n; ++i)
-      milestones[i] = {static_cast<int>(i), points.data() + i * 7};
+      milestones[i] = {static_cast<int>(i), points.data() + i * width};
     auto start = std::chrono::steady_clock::now();
     gnat.add(milestones);
     const double build_ms = milliseconds_since(start);

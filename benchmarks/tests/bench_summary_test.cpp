@@ -126,6 +126,18 @@ TEST(BenchRecord, CsvsOfEarlierVersionsAreStillRead) {
   EXPECT_EQ(issue32[0].graph_states, 40);
   EXPECT_DOUBLE_EQ(issue32[0].simplify_time_s, 0.01);
   EXPECT_TRUE(std::isnan(issue32[0].knn_s));
+  // Issue 33's first figures: the stages, no gpu_calls.
+  const std::string issue33_first = folder.write(
+      "issue33.csv",
+      "experiment,scene,planner,checker,run,seed,status,solved,time_s,simplify_time_s,"
+      "length,simplified_length,checks,check_time_s,graph_states,memory_mb,path_check,work,"
+      "collisions,sampling_s,state_checks_s,knn_s,search_s,edge_checks_s,rounds,note\n"
+      "e,s,ours-lazyprm,gpu,0,1,exact,1,0.05,0.01,10,9,300,,40,20,pass,,,0.5,0.25,1,2,3,4,\n");
+  const std::vector<BenchRecord> issue33 = read_bench_csv(issue33_first);
+  ASSERT_EQ(issue33.size(), 1u);
+  EXPECT_DOUBLE_EQ(issue33[0].knn_s, 1);
+  EXPECT_EQ(issue33[0].rounds, 4);
+  EXPECT_EQ(issue33[0].gpu_calls, -1);
   // And this version's: the check time and the stages written and read back.
   BenchRecord record = records[0];
   record.check_time_s = 1.25;
@@ -135,6 +147,7 @@ TEST(BenchRecord, CsvsOfEarlierVersionsAreStillRead) {
   record.search_s = 0.0625;
   record.edge_checks_s = 0.375;
   record.rounds = 3;
+  record.gpu_calls = 17;
   const std::string now = folder.path() + "/now.csv";
   {
     std::ofstream out(now);
@@ -151,6 +164,7 @@ TEST(BenchRecord, CsvsOfEarlierVersionsAreStillRead) {
   EXPECT_DOUBLE_EQ(again[0].search_s, 0.0625);
   EXPECT_DOUBLE_EQ(again[0].edge_checks_s, 0.375);
   EXPECT_EQ(again[0].rounds, 3);
+  EXPECT_EQ(again[0].gpu_calls, 17);
   EXPECT_EQ(again[0].note, "");
   // A record of the old width under this version's header is refused, naming the line.
   {
@@ -161,7 +175,7 @@ TEST(BenchRecord, CsvsOfEarlierVersionsAreStillRead) {
     read_bench_csv(now);
     ADD_FAILURE() << "a short record was read";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("now.csv:3: 19 fields, not 26"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("now.csv:3: 19 fields, not 27"), std::string::npos)
         << e.what();
   }
 }

@@ -131,6 +131,7 @@ void GpuChecker::route(const float* configurations, std::size_t n, const float* 
   if (n <= routing_.host_threads_up_to) {
     check_on_host(configurations, n, clearances, verdicts);
   } else {
+    ++device_calls_;
     gpu_.check(configurations, n, verdicts, clearances);
   }
 }

@@ -3,6 +3,8 @@
 #include <ompl/datastructures/NearestNeighborsGNAT.h>
 
 #include <algorithm>
+#include <array>
+#include <random>
 
 #include "gplanner/knn_gpu/nearest_neighbors.h"
 
@@ -114,22 +116,41 @@ int degrees_of_freedom(const ConfigurationMetric& metric) {
   return base + metric.joint_count;
 }
 
-// knn_gpu's all-points search, every call over all points.
+// knn_gpu's all-points search, every call over all points. Warmed up when made (device
+// buffers for a first round of a few thousand milestones, the kernels loaded): a
+// plan's first k-NN call then costs its work, not the 2.5 ms of a first call (2,002
+// 7-joint milestones on an H200: 0.3 ms warm, 2.8 ms cold; benchmarks/RESULTS.md).
 class GpuNeighborFinder : public NeighborFinder {
  public:
-  explicit GpuNeighborFinder(const ConfigurationMetric& metric) : metric_(metric) {}
+  explicit GpuNeighborFinder(const ConfigurationMetric& metric) : metric_(metric) {
+    constexpr std::size_t kWarmPoints = 4096;
+    constexpr int kWarmNeighbors = 16;
+    const int width = metric.width();
+    std::vector<float> points(kWarmPoints * width);
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<float> coordinate(-1, 1);
+    for (float& x : points) x = coordinate(rng);
+    if (metric.base == MetricBase::kFloating) {  // unit quaternions w x y z: the identity
+      for (std::size_t i = 0; i < kWarmPoints; ++i)
+        std::copy_n(std::array<float, 4>{1, 0, 0, 0}.data(), 4, &points[i * width + 3]);
+    }
+    gpu_.all_nearest(metric_, points.data(), kWarmPoints, kWarmNeighbors);
+  }
   std::string device() const override { return "gpu"; }
   bool nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end, int k,
                   std::vector<int>* indices) override {
+    ++device_calls_;
     const NeighborTable table = gpu_.all_nearest(metric_, points, n, k);
     indices->assign(table.indices.begin() + first * k, table.indices.begin() + end * k);
     return true;
   }
   bool searches_all_points() const override { return true; }
+  std::size_t device_calls() const override { return device_calls_; }
 
  private:
   ConfigurationMetric metric_;
   GpuNearestNeighbors gpu_;
+  std::size_t device_calls_ = 0;
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "gplanner/common/parallel_for.h"
 #include "gplanner/common/physical_memory.h"
@@ -19,14 +20,27 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Adds the time from construction to destruction to `*sink`.
+// Adds the time from construction to destruction to `*sink`, and where `calls` is given
+// the GPU calls made meanwhile (as `count` counts them) to `*calls`.
 class StageTimer {
  public:
-  explicit StageTimer(double* sink) : sink_(sink), start_(Clock::now()) {}
-  ~StageTimer() { *sink_ += seconds_since(start_); }
+  explicit StageTimer(double* sink, std::size_t* calls = nullptr,
+                      const std::function<std::size_t()>* count = nullptr)
+      : sink_(sink),
+        calls_(calls),
+        count_(count),
+        calls_before_(calls ? (*count)() : 0),
+        start_(Clock::now()) {}
+  ~StageTimer() {
+    *sink_ += seconds_since(start_);
+    if (calls_) *calls_ += (*count_)() - calls_before_;
+  }
 
  private:
   double* sink_;
+  std::size_t* calls_;
+  const std::function<std::size_t()>* count_;
+  std::size_t calls_before_;
   Clock::time_point start_;
 };
 
@@ -87,8 +101,13 @@ RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
       sampler_(scene.space, local_.metric(), options.sampler),
       roadmap_(scene.space.width()),
       rng_(options.seed),
-      sampling_batch_(slice_seconds(options), 128, 64, std::size_t(1) << 22),
-      knn_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 40) {
+      // Where a call has a fixed cost (a GPU's), the first batch as large as that cost:
+      // the first round's milestones in one or two calls rather than a call per growth.
+      sampling_batch_(slice_seconds(options),
+                      std::max<std::size_t>(128, checker->configurations_per_call_cost()), 64,
+                      std::size_t(1) << 22),
+      knn_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 40),
+      gpu_calls_([this] { return checker_->device_calls() + neighbors_->device_calls(); }) {
   neighbors_->reset();
 }
 
@@ -109,7 +128,7 @@ bool RoadmapPlanner::check_loaded_milestones(PlanResult* result) {
   std::vector<std::uint8_t> colliding;
   while (loaded_unchecked_ > 0) {
     if (stop_()) return false;
-    StageTimer timer(&result->times.state_checks);
+    StageTimer timer(&result->times.state_checks, &result->gpu_calls.state_checks, &gpu_calls_);
     const std::size_t count = std::min<std::size_t>(loaded_unchecked_, sampling_batch_.next());
     const std::size_t first = loaded_unchecked_ - count;
     colliding.assign(count, 1);
@@ -186,7 +205,7 @@ bool RoadmapPlanner::connect(PlanResult* result) {
   // seconds past the limit). A finder that searches all points in every call (the GPU's)
   // gets them in one call, made only where the last call's time, scaled as the square of
   // the points, says it ends within the time limit.
-  StageTimer timer(&result->times.knn);
+  StageTimer timer(&result->times.knn, &result->gpu_calls.knn, &gpu_calls_);
   const std::size_t n = roadmap_.vertex_count();
   const int k = options_.neighbors;
   const ConfigurationMetric& metric = local_.metric();
@@ -341,7 +360,7 @@ bool RoadmapPlanner::check_edge_motions(MotionChecker* motions,
 
 void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result) {
   if (edges.empty()) return;
-  StageTimer timer(&result->times.edge_checks);
+  StageTimer timer(&result->times.edge_checks, &result->gpu_calls.edge_checks, &gpu_calls_);
   // In parts of kPart edges (PRM hands over millions), each part's verdicts kept: memory
   // stays bounded, and a stop loses only the part under way, whose edges stay unknown.
   constexpr std::size_t kPart = std::size_t(1) << 18;
@@ -364,6 +383,7 @@ void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanRe
 PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   started_ = Clock::now();
   PlanResult result;
+  const std::size_t gpu_calls_before = gpu_calls_();
   local_.reset_stats();
   certifier_.reset_stats();
   const int width = scene_.space.width();
@@ -394,7 +414,11 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       result.stop_reason = "memory limit";
       break;
     }
-    if (count > 0) add_milestones(count, &result);
+    if (count > 0) {
+      double sampler_seconds = 0;  // the sampler splits its time between two stages itself
+      StageTimer calls(&sampler_seconds, &result.gpu_calls.state_checks, &gpu_calls_);
+      add_milestones(count, &result);
+    }
     report("milestones", result);
     if (!connect(&result)) break;
     report("neighbours", result);
@@ -455,7 +479,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       std::vector<std::uint8_t> invalid;
       bool checked;
       {
-        StageTimer timer(&result.times.edge_checks);
+        StageTimer timer(&result.times.edge_checks, &result.gpu_calls.edge_checks, &gpu_calls_);
         checked =
             check_edge_motions(certifies_path() ? static_cast<MotionChecker*>(&certifier_) : &fine,
                                unchecked, &invalid);
@@ -489,7 +513,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     result.length_before_shortcut = path_length(local_.metric(), result.path, width);
     result.length = result.length_before_shortcut;
     if (options_.shortcut_rounds > 0) {
-      StageTimer timer(&result.times.shortcutting);
+      StageTimer timer(&result.times.shortcutting, &result.gpu_calls.shortcutting, &gpu_calls_);
       // Its own generator: the sampler's position depends on how many attempts the
       // time-sized batches made.
       std::mt19937_64 shortcut_rng(options_.seed ^ 0x5bd1e995u);
@@ -502,6 +526,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   result.samples_checked = local_.stats().samples + certifier_.stats().checks;
   result.edge_batches = local_.stats().batches + fine.stats().batches + certifier_.stats().batches;
   result.times.total = elapsed();
+  result.gpu_calls.total = gpu_calls_() - gpu_calls_before;
   neighbors_->set_stop(nullptr);
   return result;
 }

@@ -15,19 +15,24 @@ class CostlyCallChecker : public CollisionChecker {
   std::string backend() const override { return cpu_.backend(); }
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override {
     cpu_.check(configurations, n, verdicts);
+    ++calls_;
   }
   void check_clearances(const float* configurations, std::size_t n, const float* clearances,
                         std::uint8_t* verdicts) override {
     cpu_.check_clearances(configurations, n, clearances, verdicts);
+    ++calls_;
   }
   std::size_t configurations_per_call_cost() const override { return per_call_; }
   // No call is free of its fixed cost (as a GPU call): motions are not checked a level a
   // call for the sake of stopping early.
   std::size_t cheap_calls_up_to() const override { return 0; }
+  // Every call stands for a GPU call.
+  std::size_t device_calls() const override { return calls_; }
 
  private:
   CpuChecker cpu_;
   std::size_t per_call_;
+  std::size_t calls_ = 0;  // tests call from one thread
 };
 
 }  // namespace gplanner::testing

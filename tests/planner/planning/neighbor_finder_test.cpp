@@ -1,6 +1,7 @@
 // The CPU neighbour finders (OMPL's GNAT for rigid bodies, brute force beyond 6 degrees
 // of freedom) against knn_gpu's brute-force reference, called as the planner calls them:
-// rounds of new points, each new point's k nearest among all so far.
+// rounds of new points, each new point's k nearest among all so far; and the gpu
+// backend's finder.
 
 #include "gplanner/planner/planning/neighbor_finder.h"
 
@@ -96,6 +97,32 @@ TEST(CpuNeighborFinder, ManyJointsMatchTheReference) {  // 38: brute force
   metric.joint_count = 38;
   metric.joint_weight = 2;
   expect_finder_matches_reference(metric);
+}
+
+// The gpu backend's finder, warmed up when made: rounds of a plan's sizes, one GPU call
+// each, all as the reference says.
+TEST(GpuNeighborFinder, MatchesTheReferenceRoundByRound) {
+  std::string reason;
+  if (!gpu_nearest_neighbors_available(&reason)) GTEST_SKIP() << "no GPU: " << reason;
+  for (const MetricBase base : {MetricBase::kNone, MetricBase::kFloating}) {
+    ConfigurationMetric metric;
+    metric.base = base;
+    metric.joint_count = base == MetricBase::kNone ? 7 : 0;
+    const int k = 10;
+    const std::size_t total = 8002;
+    std::mt19937_64 rng(3);
+    const std::vector<float> points = random_points(metric, total, &rng);
+    std::unique_ptr<NeighborFinder> finder = make_neighbor_finder(metric, "gpu");
+    ASSERT_EQ(finder->device(), "gpu");
+    EXPECT_EQ(finder->device_calls(), 0u);  // the warm-up is not the planner's
+    std::vector<int> found;
+    const std::size_t ends[] = {2002, 4002, 8002};
+    for (std::size_t r = 0, first = 0; r < 3; first = ends[r++]) {
+      ASSERT_TRUE(finder->nearest_of_new(points.data(), ends[r], first, k, &found));
+      expect_reference(metric, points, ends[r], first, k, found);
+      EXPECT_EQ(finder->device_calls(), r + 1);
+    }
+  }
 }
 
 }  // namespace

@@ -2,15 +2,19 @@
 // a few thousand samples and as much as many samples (as the GPU's do): every shortened path is
 // free at a tenth of the edge resolution; checking the next round's shortcuts with this round's
 // fine check gives the same path in fewer calls; checking every shortcut finely at once takes one
-// call a round.
+// call a round. Certified shortcutting certifies the path its rounds give in one certification,
+// and where that fails (a shortcut free at the samples, through an obstacle between them) runs
+// the rounds again with every shortcut certified: the path it returns is certified either way.
 
 #include "gplanner/planner/planning/path_shortcutting.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "gplanner/planner/checkers/cpu_checker.h"
+#include "gplanner/planner/planning/certified_motions.h"
 #include "gplanner/planner/planning/roadmap_planner.h"
 #include "gplanner/planner/planning/scene_metric.h"
 #include "gplanner/planner/scene/scene.h"
@@ -63,6 +67,85 @@ TEST(PathShortcutting, FewerCallsWhereCallsCostMoreThanSamples) {
   EXPECT_LT(calls[1], calls[0]);
   EXPECT_LE(calls[2], static_cast<std::size_t>(rounds));  // one call a round
   EXPECT_LT(calls[2], calls[0]);
+}
+
+// Whether every segment of `path` is certified free (checked with a certifier of its own).
+bool certified_whole(const Scene& scene, CollisionChecker* checker, const PlanOptions& options,
+                     std::vector<float> path) {
+  CertifiedMotions certify(scene, checker, options.certified);
+  const int width = scene.space.width();
+  const std::size_t segments = path.size() / width - 1;
+  std::vector<std::uint8_t> invalid(segments);
+  EXPECT_TRUE(certify.check_motions(path.data(), path.data() + width, segments, invalid.data()));
+  return std::count(invalid.begin(), invalid.end(), 1) == 0;
+}
+
+TEST(PathShortcutting, CertifiedInOneCertificationOfTheShortenedPath) {
+  const Scene scene = load_scene(testing::project_root() + "/scenes/pr2_base_arm.yaml");
+  CpuChecker cpu(scene);
+  std::unique_ptr<NeighborFinder> neighbors =
+      make_neighbor_finder(make_metric(scene.space, scene.planner), "cpu");
+  PlanOptions options = plan_options(scene);
+  options.seed = 1;
+  options.shortcut_rounds = 0;
+  RoadmapPlanner planner(scene, &cpu, neighbors.get(), RoadmapStrategy::kLazyPrm, options);
+  const PlanResult found = planner.solve(scene.start.data(), scene.goal.data());
+  ASSERT_TRUE(found.solved) << found.stop_reason;
+  CostlyCallChecker checker(scene, 4096);
+  LocalPlanner local(scene, &checker, options.local);
+  LocalPlannerOptions fine_options = options.local;
+  fine_options.resolution_fraction /= options.final_check_refinement;
+  LocalPlanner fine(scene, &checker, fine_options);
+  CertifiedMotions certify(scene, &checker, options.certified);
+  std::vector<float> path = found.path;
+  std::mt19937_64 rng(1);
+  const double length = shortcut_path(scene.space, &local, &fine, &certify, 6, 256, &rng, &path);
+  EXPECT_LT(length, found.length);
+  EXPECT_EQ(testing::path_problem(scene, path), "");
+  EXPECT_TRUE(certified_whole(scene, &cpu, options, path));
+  // One certification: of the returned path's segments, nothing else.
+  EXPECT_EQ(certify.stats().motions, path.size() / scene.space.width() - 1);
+}
+
+TEST(PathShortcutting, CertifiedWhereAShortcutPassesItsSamplesThroughAnObstacle) {
+  const testing::ScratchFolder folder;
+  folder.write("cube.obj", testing::kCubeObj);
+  const std::string file = folder.write("scene.yaml", R"(name: block
+robot:
+  mesh: cube.obj
+obstacles:
+  - box: [0.5, 0.5, 0.5]
+bounds:
+  min: [-2, -2, -1]
+  max: [2, 2, 1]
+start:
+  base: {xyz: [-1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
+goal:
+  base: {xyz: [1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
+)");
+  const Scene scene = load_scene(file);
+  CpuChecker cpu(scene);
+  PlanOptions options = plan_options(scene);
+  // Checks with no sample inside a motion, only its ends: every shortcut passes them,
+  // the straight line through the block too.
+  LocalPlannerOptions blind = options.local;
+  blind.resolution_fraction = 10;
+  blind.max_displacement = 0;
+  LocalPlanner local(scene, &cpu, blind), fine(scene, &cpu, blind);
+  CertifiedMotions certify(scene, &cpu, options.certified);
+  // Around the block: start, up, across, down, goal.
+  std::vector<float> path;
+  const float waypoints[5][2] = {{-1, 0}, {-1, 1}, {0, 1}, {1, 1}, {1, 0}};
+  for (const auto& xy : waypoints) path.insert(path.end(), {xy[0], xy[1], 0, 1, 0, 0, 0});
+  ASSERT_TRUE(certified_whole(scene, &cpu, options, path));
+  const std::vector<float> around = path;
+  std::mt19937_64 rng(1);
+  shortcut_path(scene.space, &local, &fine, &certify, 3, 64, &rng, &path);
+  // The straight line was taken by the rounds, failed its certification, and the rounds
+  // ran again certifying each shortcut: what comes back is certified, and goes around.
+  EXPECT_GT(certify.stats().motions, path.size() / scene.space.width() - 1);
+  EXPECT_TRUE(certified_whole(scene, &cpu, options, path));
+  for (std::size_t w = 0; w < path.size() / 7; ++w) EXPECT_FALSE(cpu.in_collision(&path[w * 7]));
 }
 
 }  // namespace

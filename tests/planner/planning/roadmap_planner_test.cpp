@@ -12,6 +12,7 @@
 #include "gplanner/planner/output/roadmap_file.h"
 #include "gplanner/planner/planning/scene_metric.h"
 #include "gplanner/planner/scene/scene.h"
+#include "planner/planning/costly_call_checker.h"
 #include "planner/scene_test_support.h"
 #include "test_support.h"
 
@@ -52,6 +53,32 @@ TEST(RoadmapPlanner, LazyPrmFindsAFreePathAndShortensIt) {
   EXPECT_GT(result.times.edge_checks, 0);
   EXPECT_GE(result.times.total, result.times.state_checks + result.times.knn +
                                     result.times.edge_checks + result.times.shortcutting);
+}
+
+// Every GPU call counted, in the stage that made it; none on the cpu backend. (A checker
+// that counts each of its calls as a GPU call stands for the GPU.)
+TEST(RoadmapPlanner, GpuCallsAreCountedPerStage) {
+  Planning p("pr2_base_arm.yaml");
+  const PlanResult on_cpu = p.plan(RoadmapStrategy::kLazyPrm, 1);
+  ASSERT_TRUE(on_cpu.solved) << on_cpu.stop_reason;
+  EXPECT_EQ(on_cpu.gpu_calls.total, 0u);
+  testing::CostlyCallChecker costly(p.scene, 8192);
+  PlanOptions options = plan_options(p.scene);
+  options.seed = 1;
+  RoadmapPlanner planner(p.scene, &costly, p.neighbors.get(), RoadmapStrategy::kLazyPrm, options);
+  const std::size_t before = costly.device_calls();
+  const PlanResult result = planner.solve(p.scene.start.data(), p.scene.goal.data());
+  ASSERT_TRUE(result.solved) << result.stop_reason;
+  const PlanGpuCalls& c = result.gpu_calls;
+  EXPECT_EQ(c.total, costly.device_calls() - before);
+  EXPECT_EQ(c.total, c.state_checks + c.knn + c.edge_checks + c.shortcutting);
+  EXPECT_GT(c.state_checks, 0u);
+  EXPECT_EQ(c.knn, 0u);  // the k-NN ran on the CPU
+  EXPECT_GT(c.edge_checks, 0u);
+  EXPECT_GT(c.shortcutting, 0u);
+  // The first round's milestones in at most a few calls: the first batch as large as a
+  // call's fixed cost.
+  EXPECT_LE(c.state_checks, 3u);
 }
 
 // Checking the next shortest paths' edges in the same batch finds the path of the same

@@ -61,6 +61,10 @@ class CollisionChecker {
   // is faster. For a caller that checks a few configurations at a time and stops early,
   // where a GPU call's fixed cost would not pay. The CPU backends: themselves.
   virtual CollisionChecker* host_checker() { return this; }
+  // GPU calls made so far by this checker, on all threads (a call of check() that the
+  // gpu backend answers on the host is none): what a planner reports per stage, as the
+  // difference before and after it. The CPU backends: 0.
+  virtual std::size_t device_calls() const { return 0; }
   bool in_collision(const float* configuration) {
     std::uint8_t verdict = 0;
     check(configuration, 1, &verdict);

@@ -14,6 +14,7 @@
 // Calls from any number of threads are safe. Host calls run in parallel; GPU calls take
 // turns on the device (one call's device work at a time, under a lock: GpuBatchChecker).
 
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -58,6 +59,7 @@ class GpuChecker : public CollisionChecker {
   // Calls the host answers: no GPU call's fixed cost.
   std::size_t cheap_calls_up_to() const override { return routing_.host_threads_up_to; }
   CollisionChecker* host_checker() override { return &host_only_; }
+  std::size_t device_calls() const override { return device_calls_.load(); }
 
   // Of the last check() on the GPU to finish (calls answered on the host leave it as is).
   GpuCheckStats last_stats() const { return gpu_.last_stats(); }
@@ -99,6 +101,7 @@ class GpuChecker : public CollisionChecker {
   int host_threads_;
   HostCallRouting routing_;
   HostOnly host_only_{this};
+  std::atomic<std::size_t> device_calls_{0};
 };
 
 }  // namespace gplanner

@@ -15,7 +15,9 @@
 // segment not yet known to keep their clearance (ends shared by two segments once); an end
 // that fails but is free itself (check()) halves its segment for the next round, whose
 // clearances are half as large, so that segments near obstacles are refined and those far
-// from them are not; an end that collides makes the motion invalid. A segment that would
+// from them are not; an end that collides makes the motion invalid. Where the checker's
+// calls have a fixed cost (the GPU's), a round is one call (the plain checks in the same
+// call as the clearances) and segments are cut into quarters instead. A segment that would
 // be halved below `finest_step` makes its motion invalid too: certified answers are
 // conservative.
 //

@@ -39,6 +39,8 @@ class NeighborFinder {
   // The cost of one query among n points, in the units of a query among few: 1 for a
   // tree search, n for brute force (callers size their parts by it).
   virtual double query_cost(std::size_t /*n*/) const { return 1; }
+  // GPU calls made so far (as CollisionChecker::device_calls).
+  virtual std::size_t device_calls() const { return 0; }
   // Forgets every point given so far (a new roadmap follows).
   virtual void reset() {}
   // Polled during long work that is not a search (GNAT's insertions).

@@ -9,9 +9,11 @@
 // round's fine check (dropped if that fails: the same path, fewer calls), and a round
 // checks every shortcut with `fine` alone, in one call, where that adds fewer samples
 // than a call costs. A path valid at fine's resolution stays so. With `certify`, the
-// way's shortcuts are certified by it instead of checked with `fine`: a certified path
-// stays certified (a midpoint cuts a certified motion into two motions along the same
-// configurations). Stops, with the path as it is, when `local`'s stop condition says so.
+// path the rounds give is certified whole at the end (one certification, a few calls),
+// and where that fails, the rounds run again from the given path with each round's
+// shortcuts certified instead of checked with `fine`: a certified path stays certified
+// (a midpoint cuts a certified motion into two motions along the same configurations).
+// Stops, with the path as it is, when `local`'s stop condition says so.
 
 #include <random>
 #include <vector>

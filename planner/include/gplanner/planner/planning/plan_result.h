@@ -18,12 +18,25 @@ struct PlanTimes {
   double total = 0;         // the whole call
 };
 
+// GPU calls per stage of a plan (collision checks and k-NN; calls the gpu backend
+// answers on the host are none): a GPU call has a fixed cost of tens to hundreds of
+// microseconds, so on easy problems their count, not their size, makes the plan time.
+// All 0 on the CPU backends.
+struct PlanGpuCalls {
+  std::size_t state_checks = 0;  // milestones
+  std::size_t knn = 0;
+  std::size_t edge_checks = 0;   // edges, and the certification of the found path
+  std::size_t shortcutting = 0;
+  std::size_t total = 0;         // the whole call
+};
+
 struct PlanResult {
   bool solved = false;
   std::vector<float> path;  // shape [waypoints, width]: start ... goal
   double length = 0;        // metric length of the path
   double length_before_shortcut = 0;
   PlanTimes times;
+  PlanGpuCalls gpu_calls;
   std::size_t rounds = 0;
   std::size_t milestones = 0;  // roadmap vertices, start and goal included
   std::size_t edges = 0;

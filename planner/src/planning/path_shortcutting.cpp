@@ -107,10 +107,11 @@ double path_length(const ConfigurationMetric& metric, const std::vector<float>& 
 namespace {
 
 // The rounds, each taken shortcut checked with `fine`, or certified by `certify` where
-// given. False where the stop ended them (the path then as it was before the round).
+// given; the path after each round appended to `history` where given. False where the
+// stop ended them (the path then as it was before the round).
 bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, LocalPlanner* fine,
                      CertifiedMotions* certify, int rounds, int candidates, std::mt19937_64* rng,
-                     std::vector<float>* path) {
+                     std::vector<float>* path, std::vector<std::vector<float>>* history = nullptr) {
   const int width = space.width();
   const ConfigurationMetric& metric = local->metric();
   // Where calls cost more than samples, the next round's shortcuts are proposed on the
@@ -227,6 +228,7 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
     const bool shorter = kept.size() < m;
     std::vector<float> next_path = kept_path(space, *path, kept, refined);
     path->swap(next_path);
+    if (history) history->push_back(*path);
     if (!shorter && !refined) break;
   }
   return true;
@@ -244,26 +246,55 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
     return path_length(metric, *path, width);
   }
   // Certified: the rounds with `fine`'s checks (pipelined where calls cost more than
-  // samples), then the path they give certified whole, in one call of `certify`: a few
-  // calls where certifying each round's shortcuts took several calls a round (a tenth
-  // of the calls on the GPU). Where a segment fails (free at fine's samples, not
-  // certified), the rounds again from the path given, each shortcut certified.
+  // samples), then the path they give certified whole, in one certification: a few calls
+  // where certifying each round's shortcuts took several calls a round. Where a segment
+  // fails (free at fine's samples, not certified: a shortcut grazing an obstacle between
+  // them), the paths of the rounds before are certified, all in one certification, and
+  // the last that passes whole is taken; where none does, the rounds again from the
+  // path given, each shortcut certified.
   const std::mt19937_64 rng_before = *rng;
   std::vector<float> shortened = *path;
-  if (!shortcut_rounds(space, local, fine, nullptr, rounds, candidates, rng, &shortened))
+  std::vector<std::vector<float>> history;
+  if (!shortcut_rounds(space, local, fine, nullptr, rounds, candidates, rng, &shortened,
+                       &history))
     return path_length(metric, *path, width);
-  const std::size_t segments = shortened.size() / width - 1;
-  std::vector<std::uint8_t> invalid(segments);
-  // Segment i: waypoint i to waypoint i + 1, rows of the same array.
-  if (!certify->check_motions(shortened.data(), shortened.data() + width, segments,
-                              invalid.data()))
-    return path_length(metric, *path, width);
-  if (std::find(invalid.begin(), invalid.end(), 1) == invalid.end()) {
+  // Whether each path passes whole: its segments (waypoint i to i + 1) in one call.
+  const auto certified_whole = [&](const std::vector<const std::vector<float>*>& paths,
+                                   std::vector<std::uint8_t>* passed) {
+    std::vector<float> from, to;
+    for (const std::vector<float>* p : paths) {
+      from.insert(from.end(), p->begin(), p->end() - width);
+      to.insert(to.end(), p->begin() + width, p->end());
+    }
+    std::vector<std::uint8_t> invalid(from.size() / width);
+    if (!certify->check_motions(from.data(), to.data(), invalid.size(), invalid.data()))
+      return false;
+    passed->assign(paths.size(), 1);
+    for (std::size_t i = 0, segment = 0; i < paths.size(); ++i) {
+      for (std::size_t s = 0; s + 1 < paths[i]->size() / width; ++s)
+        if (invalid[segment++]) (*passed)[i] = 0;
+    }
+    return true;
+  };
+  std::vector<std::uint8_t> passed;
+  if (!certified_whole({&shortened}, &passed)) return path_length(metric, *path, width);
+  if (passed[0]) {
     path->swap(shortened);
-  } else {
-    *rng = rng_before;
-    shortcut_rounds(space, local, fine, certify, rounds, candidates, rng, path);
+    return path_length(metric, *path, width);
   }
+  std::vector<const std::vector<float>*> earlier;  // latest first
+  for (std::size_t r = history.size(); r-- > 0;)
+    if (history[r] != shortened) earlier.push_back(&history[r]);
+  if (!earlier.empty() && !certified_whole(earlier, &passed))
+    return path_length(metric, *path, width);
+  for (std::size_t i = 0; i < earlier.size(); ++i) {
+    if (passed[i]) {
+      *path = *earlier[i];
+      return path_length(metric, *path, width);
+    }
+  }
+  *rng = rng_before;
+  shortcut_rounds(space, local, fine, certify, rounds, candidates, rng, path);
   return path_length(metric, *path, width);
 }
 

@@ -122,7 +122,13 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
   Proposal ahead;  // the next round's shortcuts, already checked
   std::vector<std::uint8_t> ahead_invalid;
   bool have_ahead = false;
-  for (int round = 0; round < rounds; ++round) {
+  // Rounds in a row that shortened the path by less than kGain: two end the rounds (the
+  // path has settled; each round costs a call). One is not enough: a round's midpoints
+  // may let the next cut a corner (MotionBenchMaker's box: no gain, then 15 %).
+  constexpr double kGain = 1e-3;
+  int idle_rounds = 0;
+  double length = path_length(metric, *path, width);
+  for (int round = 0; round < rounds && idle_rounds < 2; ++round) {
     const std::size_t m = path->size() / width;
     if (m < 3) break;
     Proposal p;
@@ -230,6 +236,9 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
     path->swap(next_path);
     if (history) history->push_back(*path);
     if (!shorter && !refined) break;
+    const double new_length = path_length(metric, *path, width);
+    idle_rounds = new_length < length * (1 - kGain) ? 0 : idle_rounds + 1;
+    length = new_length;
   }
   return true;
 }

@@ -4,15 +4,18 @@
 // shortest path through the valid ones (a shortest path over the waypoints in order),
 // whose shortcuts are checked again with `fine` (dropping those that fail, until the
 // path holds only shortcuts both passed); then puts a midpoint into every segment so
-// that the next round can cut corners closer. Where the checker's calls cost more than
+// that the next round can cut corners closer; two rounds in a row that shorten the path
+// by less than 0.1 % end them early. Where the checker's calls cost more than
 // samples (the GPU), the next round's shortcuts are checked in the same call as this
 // round's fine check (dropped if that fails: the same path, fewer calls), and a round
 // checks every shortcut with `fine` alone, in one call, where that adds fewer samples
 // than a call costs. A path valid at fine's resolution stays so. With `certify`, the
-// path the rounds give is certified whole at the end (one certification, a few calls),
-// and where that fails, the rounds run again from the given path with each round's
-// shortcuts certified instead of checked with `fine`: a certified path stays certified
-// (a midpoint cuts a certified motion into two motions along the same configurations).
+// path the rounds give is certified whole at the end (one certification, a few calls);
+// where that fails, the last earlier round's path that passes whole (all certified in
+// one certification), and where none does, the rounds again from the given path with
+// each round's shortcuts certified instead of checked with `fine`: a certified path
+// stays certified (a midpoint cuts a certified motion into two motions along the same
+// configurations).
 // Stops, with the path as it is, when `local`'s stop condition says so.
 
 #include <random>

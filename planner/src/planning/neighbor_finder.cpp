@@ -179,7 +179,8 @@ int degrees_of_freedom(const ConfigurationMetric& metric) {
 // knn_gpu's all-points search, every call over all points. Warmed up when made (device
 // buffers for a first round of a few thousand milestones, the kernels loaded): a
 // plan's first k-NN call then costs its work, not the 2.5 ms of a first call (2,002
-// 7-joint milestones on an H200: 0.3 ms warm, 2.8 ms cold; benchmarks/RESULTS.md).
+// 7-joint milestones on an H200: 0.3 ms warm, 2.8 ms cold; measured:
+// benchmarks/history/issue33_fewer_gpu_calls_500f1e5.md).
 class GpuNeighborFinder : public NeighborFinder {
  public:
   explicit GpuNeighborFinder(const ConfigurationMetric& metric) : metric_(metric) {

@@ -54,3 +54,17 @@ c++ -std=c++17 -fsyntax-only "$here/downstream/old_paths.cpp" $(pkg-config --cfl
     2> "$work/old_paths.log" || { cat "$work/old_paths.log"; echo "0.1.0's header paths fail"; exit 1; }
 test "$(grep -c "is deprecated (gplanner 0.2.0)" "$work/old_paths.log")" -ge 29 ||
   { cat "$work/old_paths.log"; echo "a forwarding header says nothing"; exit 1; }
+# The Python module, where it was built: installed into the prefix's site directory, it
+# imports from there with Debian's python3 (no library path: its RUNPATH names the
+# installed library) and checks the scene's start.
+if [ -f "$build/python/gplanner/__init__.py" ]; then
+  site=$(dirname "$(find "$prefix" -path '*/gplanner/__init__.py' | head -1)")
+  case $site in "$prefix"/lib/python3*/dist-packages/gplanner) ;; *)
+    echo "the Python module is installed at '$site'"; exit 1;; esac
+  env -u LD_LIBRARY_PATH PYTHONPATH="$(dirname "$site")" /usr/bin/python3 -c "
+import sys, gplanner
+assert gplanner.__file__.startswith('$prefix'), gplanner.__file__
+scene = gplanner.load_scene(sys.argv[1])
+assert scene.checker('cpu').check(scene.start).tolist() == [False]
+" "$scene"
+fi

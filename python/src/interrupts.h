@@ -3,14 +3,16 @@
 // handlers now and then (taking the GIL for that moment); a KeyboardInterrupt (or any
 // exception a handler raises) stops the work and is raised when the call returns.
 
+#include <atomic>
 #include <chrono>
 
 namespace gplanner::python {
 
 class InterruptPoll {
  public:
-  // True once a signal handler raised (its exception is then pending on this thread):
-  // asked at most every kPeriod, from a thread that does not hold the GIL.
+  // True once a signal handler raised (its exception is then pending on the thread that
+  // asked): asked at most every kPeriod, from threads that do not hold the GIL (the
+  // handlers run on the main thread only; elsewhere the answer stays false).
   bool raised();
   // Throws pybind11::error_already_set where a handler raised; call with the GIL held.
   void rethrow() const;
@@ -18,8 +20,8 @@ class InterruptPoll {
   static constexpr std::chrono::milliseconds kPeriod{20};
 
  private:
-  bool raised_ = false;
-  std::chrono::steady_clock::time_point last_{};
+  std::atomic<bool> raised_{false};
+  std::atomic<std::chrono::steady_clock::rep> last_{0};  // ticks of the last look
 };
 
 }  // namespace gplanner::python

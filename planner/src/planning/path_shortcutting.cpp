@@ -265,7 +265,8 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
   std::vector<float> shortened = *path;
   std::vector<std::vector<float>> history;
   if (!shortcut_rounds(space, local, fine, nullptr, rounds, candidates, rng, &shortened,
-                       &history))
+                       &history) ||
+      shortened == *path)  // stopped, or nothing shorter: the given path, certified
     return path_length(metric, *path, width);
   // Whether each path passes whole: its segments (waypoint i to i + 1) in one call.
   const auto certified_whole = [&](const std::vector<const std::vector<float>*>& paths,

@@ -27,16 +27,27 @@ namespace {
 
 using testing::CostlyCallChecker;
 
-TEST(PathShortcutting, FewerCallsWhereCallsCostMoreThanSamples) {
-  const Scene scene = load_scene(testing::project_root() + "/scenes/pr2_base_arm.yaml");
-  CpuChecker cpu(scene);
-  std::unique_ptr<NeighborFinder> neighbors =
-      make_neighbor_finder(make_metric(scene.space, scene.planner), "cpu");
+PlanOptions unshortened_options(const Scene& scene) {
   PlanOptions options = plan_options(scene);
   options.seed = 1;
   options.shortcut_rounds = 0;
-  RoadmapPlanner planner(scene, &cpu, neighbors.get(), RoadmapStrategy::kLazyPrm, options);
-  const PlanResult found = planner.solve(scene.start.data(), scene.goal.data());
+  return options;
+}
+
+// Lazy PRM's path on `scene`, seed 1, not shortened: what the tests shorten.
+PlanResult unshortened_path(const Scene& scene, CollisionChecker* checker) {
+  std::unique_ptr<NeighborFinder> neighbors =
+      make_neighbor_finder(make_metric(scene.space, scene.planner), "cpu");
+  RoadmapPlanner planner(scene, checker, neighbors.get(), RoadmapStrategy::kLazyPrm,
+                         unshortened_options(scene));
+  return planner.solve(scene.start.data(), scene.goal.data());
+}
+
+TEST(PathShortcutting, FewerCallsWhereCallsCostMoreThanSamples) {
+  const Scene scene = load_scene(testing::project_root() + "/scenes/pr2_base_arm.yaml");
+  CpuChecker cpu(scene);
+  const PlanOptions options = unshortened_options(scene);
+  const PlanResult found = unshortened_path(scene, &cpu);
   ASSERT_TRUE(found.solved) << found.stop_reason;
   ASSERT_GT(found.path.size() / scene.space.width(), 3u);
 
@@ -83,13 +94,8 @@ bool certified_whole(const Scene& scene, CollisionChecker* checker, const PlanOp
 TEST(PathShortcutting, CertifiedInOneCertificationOfTheShortenedPath) {
   const Scene scene = load_scene(testing::project_root() + "/scenes/pr2_base_arm.yaml");
   CpuChecker cpu(scene);
-  std::unique_ptr<NeighborFinder> neighbors =
-      make_neighbor_finder(make_metric(scene.space, scene.planner), "cpu");
-  PlanOptions options = plan_options(scene);
-  options.seed = 1;
-  options.shortcut_rounds = 0;
-  RoadmapPlanner planner(scene, &cpu, neighbors.get(), RoadmapStrategy::kLazyPrm, options);
-  const PlanResult found = planner.solve(scene.start.data(), scene.goal.data());
+  const PlanOptions options = unshortened_options(scene);
+  const PlanResult found = unshortened_path(scene, &cpu);
   ASSERT_TRUE(found.solved) << found.stop_reason;
   CostlyCallChecker checker(scene, 4096);
   LocalPlanner local(scene, &checker, options.local);

@@ -45,6 +45,7 @@ bool settle(const Roadmap& roadmap, bool valid_edges_only, const std::function<b
 
 void GoalDistances::compute(const Roadmap& roadmap, std::uint32_t goal, bool valid_edges_only) {
   valid_edges_only_ = valid_edges_only;
+  goal_ = goal;
   cost_.assign(roadmap.vertex_count(), kInf);
   via_.assign(roadmap.vertex_count(), kNone);
   affected_.assign(roadmap.vertex_count(), 0);
@@ -74,10 +75,16 @@ std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
       }
     }
   }
+  // Past half of all vertices, a Dijkstra from the goal over all costs less than
+  // repairing them (finding them, then seeding each from its neighbours): on lazy PRM's
+  // roadmaps an invalid edge near the goal leaves most of the roadmap affected.
+  const std::size_t most = cost_.size() / 2;
   for (std::size_t i = 0; i < found.size(); ++i) {
-    if (found.size() > max_affected) {
+    if (found.size() > std::min(max_affected, most)) {
       for (const std::uint32_t u : found) affected_[u] = 0;
-      return max_affected + 1;
+      if (found.size() > max_affected) return max_affected + 1;
+      compute(roadmap, goal_, valid_edges_only_);
+      return cost_.size();
     }
     const std::uint32_t v = found[i];
     for (const std::uint32_t e : roadmap.edges_at(v)) {

@@ -86,6 +86,34 @@ TEST(GoalDistances, StayExactWhileEdgesTurnInvalid) {
   EXPECT_LE(expanded, on_paths + on_paths / 20);
 }
 
+// An edge that most of the roadmap's ways to the goal pass (the goal's only edge, then
+// one of a hub's): every cost from the goal again, as exact as a repair; a bound below
+// half of the roadmap still changes nothing.
+TEST(GoalDistances, RemovingMostWaysComputesEveryCostAgain) {
+  std::mt19937 rng(3);
+  Roadmap roadmap = radius_roadmap(&rng, 300, 0.15f);
+  const float far[] = {5, 5}, beyond[] = {6, 5};
+  const std::uint32_t hub = roadmap.add_vertex(far), goal = roadmap.add_vertex(beyond);
+  for (std::uint32_t v = 0; v < 300; v += 2) roadmap.add_edge(v, hub, 10, EdgeState::kUnknown);
+  const auto goal_edge =
+      static_cast<std::uint32_t>(roadmap.add_edge(hub, goal, 1, EdgeState::kUnknown));
+  GoalDistances kept;
+  kept.compute(roadmap, goal, false);
+  ASSERT_TRUE(std::isfinite(kept.cost()[0]));
+  // A bound below half: nothing changes (a copy: its costs are then no longer exact).
+  GoalDistances bounded = kept;
+  roadmap.edge(goal_edge).state = EdgeState::kInvalid;
+  EXPECT_EQ(bounded.remove_edges(roadmap, {goal_edge}, 10), 11u);
+  EXPECT_EQ(bounded.cost(), kept.cost());
+  // No bound: everything again; no vertex but the goal reaches it now.
+  EXPECT_EQ(kept.remove_edges(roadmap, {goal_edge}), roadmap.vertex_count());
+  GoalDistances fresh;
+  fresh.compute(roadmap, goal, false);
+  expect_same_costs(kept.cost(), fresh.cost());
+  EXPECT_TRUE(std::isinf(kept.cost()[0]) && std::isinf(kept.cost()[hub]));
+  EXPECT_EQ(kept.cost()[goal], 0);
+}
+
 // Edges no vertex's way to the goal uses change nothing; a valid edge in the list is
 // not removed.
 TEST(GoalDistances, EdgesOffEveryWayChangeNothing) {

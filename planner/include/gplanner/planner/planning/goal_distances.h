@@ -25,8 +25,10 @@ class GoalDistances {
 
   // `edges` are no longer usable (their states already changed in the roadmap; usable
   // ones among them are ignored): the costs of the vertices whose way to the goal went
-  // through one of them are computed again. Returns how many vertices that was. Where
-  // more than `max_affected` would be, it changes nothing and returns max_affected + 1:
+  // through one of them are computed again (where that is more than half of all, every
+  // cost from the goal again: cheaper than repairing most of the roadmap). Returns how
+  // many vertices that was. Where more than `max_affected` would be (max_affected below
+  // half of all), it changes nothing and returns max_affected + 1:
   // the costs are then no longer exact, but still a consistent lower bound (taking
   // edges away only lengthens ways), and must not be given edges to remove again.
   std::size_t remove_edges(const Roadmap& roadmap, const std::vector<std::uint32_t>& edges,
@@ -43,6 +45,7 @@ class GoalDistances {
 
  private:
   bool valid_edges_only_ = false;
+  std::uint32_t goal_ = 0;
   std::function<bool()> should_stop_;
   bool stopped_ = false;
   std::vector<double> cost_;

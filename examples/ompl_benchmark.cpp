@@ -5,7 +5,9 @@
 // Arena plots).
 //
 // usage: gplanner_ompl_benchmark SCENE [--backend gpu|cpu|fcl] [--runs N]
-//                                [--time-limit SECONDS] [--log FILE]
+//                                [--time-limit SECONDS] [--log FILE] [--seed S]
+// --seed: OMPL's random seed (ompl::RNG::setSeed), which seeds every planner's runs, ours
+// too; without it OMPL draws one, and runs differ from one start to the next.
 
 #include <ompl/base/ScopedState.h>
 #include <ompl/geometric/SimpleSetup.h>
@@ -13,6 +15,7 @@
 #include <ompl/geometric/planners/prm/PRM.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/tools/benchmark/Benchmark.h>
+#include <ompl/util/RandomNumbers.h>
 
 #include <cstdlib>
 #include <iostream>
@@ -31,7 +34,7 @@ namespace og = ompl::geometric;
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::cerr << "usage: gplanner_ompl_benchmark SCENE [--backend B] [--runs N] "
-                 "[--time-limit SECONDS] [--log FILE]\n";
+                 "[--time-limit SECONDS] [--log FILE] [--seed S]\n";
     return 2;
   }
   std::string backend = "gpu", log = "gplanner_benchmark.log";
@@ -47,6 +50,8 @@ int main(int argc, char** argv) {
       time_limit = std::atof(value.c_str());
     } else if (option == "--log") {
       log = value;
+    } else if (option == "--seed") {
+      ompl::RNG::setSeed(std::strtoul(value.c_str(), nullptr, 10));
     } else {
       std::cerr << "unknown option " << option << "\n";
       return 2;

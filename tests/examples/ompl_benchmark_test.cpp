@@ -42,7 +42,7 @@ TEST(OmplBenchmark, LogReadByOmplBenchmarkStatisticsIntoSqlite) {
   const Output bench =
       run("cd '" + scratch.path() + "' && '" + std::string(GPLANNER_OMPL_BENCHMARK_EXECUTABLE) +
           "' '" + testing::project_root() + "/scenes/pr2_base_arm.yaml' --backend cpu " +
-          "--runs 1 --time-limit 5 --log '" + log + "'");
+          "--runs 1 --time-limit 5 --seed 1 --log '" + log + "'");
   ASSERT_EQ(bench.status, 0) << bench.text;
   ASSERT_TRUE(std::filesystem::exists(log)) << bench.text;
   const Output stats = run("ompl_benchmark_statistics '" + log + "' -d '" + db + "'");

@@ -430,41 +430,55 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       report("edges", result);
     }
     // Search; lazy PRM checks the unknown edges of each path found, until one is valid.
-    // The heuristic is every vertex's cost to the goal over this round's roadmap, kept
-    // exact as edges turn invalid (GoalDistances), so that each search goes straight
-    // along the next shortest path.
-    GoalDistances to_goal;
-    to_goal.set_stop(stop_);
+    // The heuristic is every vertex's cost to the search's target (`root`, the goal at
+    // first) over this round's roadmap, kept exact as edges turn invalid
+    // (GoalDistances), so that each search goes straight along the next shortest path.
+    // The roadmap is undirected: where edges found invalid would leave more than half of
+    // the costs to repair (edges near the target, which nearly every way passes: in
+    // MotionBenchMaker's cage, the way into the cage about the goal), the search turns
+    // round, from the goal to the start, led by the costs to the start, computed once;
+    // the invalid edges then lie at the far end of most ways, and their repairs are small.
+    std::uint32_t root = g, from = s;
+    GoalDistances to_root;
+    to_root.set_stop(stop_);
     {
       StageTimer timer(&result.times.search);
-      to_goal.compute(roadmap_, g, /*valid_edges_only=*/!lazy);
+      to_root.compute(roadmap_, root, /*valid_edges_only=*/!lazy);
     }
-    if (to_goal.stopped()) {
+    if (to_root.stopped()) {
       out_of_time(&result);  // says why
       break;
     }
-    // Edges found invalid: removed from to_goal's ways.
+    // Edges found invalid: removed from to_root's ways, or the search turned round.
     auto remove_invalid = [&](const std::vector<std::uint32_t>& checked) {
       StageTimer timer(&result.times.search);
       std::vector<std::uint32_t> removed;
       for (const std::uint32_t e : checked)
         if (roadmap_.edge(e).state == EdgeState::kInvalid) removed.push_back(e);
-      to_goal.remove_edges(roadmap_, removed);
+      const std::size_t half = roadmap_.vertex_count() / 2;
+      if (to_root.remove_edges(roadmap_, removed, half) > half) {
+        std::swap(root, from);
+        to_root.compute(roadmap_, root, /*valid_edges_only=*/!lazy);
+      }
     };
-    while (!out_of_time(&result) && !to_goal.stopped()) {
+    while (!out_of_time(&result) && !to_root.stopped()) {
       GraphPath path;
       {
         StageTimer timer(&result.times.search);
-        path = shortest_path(roadmap_, to_goal.cost(), s, g, /*valid_edges_only=*/!lazy,
+        path = shortest_path(roadmap_, to_root.cost(), from, root, /*valid_edges_only=*/!lazy,
                              ~std::size_t(0), stop_);
         ++result.searches;
       }
       if (path.vertices.empty()) break;
+      if (root == s) {  // turned round: the path from start to goal
+        std::reverse(path.vertices.begin(), path.vertices.end());
+        std::reverse(path.edges.begin(), path.edges.end());
+      }
       std::vector<std::uint32_t> unknown = unknown_edges(path);
       if (!unknown.empty()) {
         {
           StageTimer timer(&result.times.search);
-          add_next_paths(to_goal, s, g, path.vertices.size(), &unknown, &result);
+          add_next_paths(to_root, from, root, path.vertices.size(), &unknown, &result);
         }
         check_edges(unknown, &result);
         remove_invalid(unknown);

@@ -83,8 +83,9 @@ class RoadmapPlanner {
   // The path's edges whose state is unknown.
   std::vector<std::uint32_t> unknown_edges(const GraphPath& path) const;
   // Lazy PRM: adds to `batch` (the shortest path's unknown edges) those of the next
-  // shortest paths, up to options_.lazy_batch_paths paths in all; shortest_vertices:
-  // the shortest path's vertex count.
+  // shortest paths, up to options_.lazy_batch_paths paths in all, searched from `s` to
+  // `g` (to_goal: every vertex's cost to `g`); shortest_vertices: the shortest path's
+  // vertex count.
   void add_next_paths(const GoalDistances& to_goal, std::uint32_t s, std::uint32_t g,
                       std::size_t shortest_vertices, std::vector<std::uint32_t>* batch,
                       PlanResult* result);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 
 #include "gplanner/common/parallel_for.h"
 #include "gplanner/common/physical_memory.h"
@@ -20,27 +19,35 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// The GPU calls a plan's checker and k-NN have made so far.
+std::size_t gpu_calls_of(const CollisionChecker& checker, const NeighborFinder& neighbors) {
+  return checker.device_calls() + neighbors.device_calls();
+}
+
 // Adds the time from construction to destruction to `*sink`, and where `calls` is given
-// the GPU calls made meanwhile (as `count` counts them) to `*calls`.
+// the GPU calls `checker` and `neighbors` made meanwhile to `*calls`.
 class StageTimer {
  public:
-  explicit StageTimer(double* sink, std::size_t* calls = nullptr,
-                      const std::function<std::size_t()>* count = nullptr)
+  explicit StageTimer(double* sink) : sink_(sink), start_(Clock::now()) {}
+  StageTimer(double* sink, std::size_t* calls, const CollisionChecker& checker,
+             const NeighborFinder& neighbors)
       : sink_(sink),
         calls_(calls),
-        count_(count),
-        calls_before_(calls ? (*count)() : 0),
+        checker_(&checker),
+        neighbors_(&neighbors),
+        calls_before_(gpu_calls_of(checker, neighbors)),
         start_(Clock::now()) {}
   ~StageTimer() {
     *sink_ += seconds_since(start_);
-    if (calls_) *calls_ += (*count_)() - calls_before_;
+    if (calls_) *calls_ += gpu_calls_of(*checker_, *neighbors_) - calls_before_;
   }
 
  private:
   double* sink_;
-  std::size_t* calls_;
-  const std::function<std::size_t()>* count_;
-  std::size_t calls_before_;
+  std::size_t* calls_ = nullptr;
+  const CollisionChecker* checker_ = nullptr;
+  const NeighborFinder* neighbors_ = nullptr;
+  std::size_t calls_before_ = 0;
   Clock::time_point start_;
 };
 
@@ -106,8 +113,7 @@ RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
       sampling_batch_(slice_seconds(options),
                       std::max<std::size_t>(128, checker->configurations_per_call_cost()), 64,
                       std::size_t(1) << 22),
-      knn_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 40),
-      gpu_calls_([this] { return checker_->device_calls() + neighbors_->device_calls(); }) {
+      knn_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 40) {
   neighbors_->reset();
 }
 
@@ -128,7 +134,8 @@ bool RoadmapPlanner::check_loaded_milestones(PlanResult* result) {
   std::vector<std::uint8_t> colliding;
   while (loaded_unchecked_ > 0) {
     if (stop_()) return false;
-    StageTimer timer(&result->times.state_checks, &result->gpu_calls.state_checks, &gpu_calls_);
+    StageTimer timer(&result->times.state_checks, &result->gpu_calls.state_checks, *checker_,
+                     *neighbors_);
     const std::size_t count = std::min<std::size_t>(loaded_unchecked_, sampling_batch_.next());
     const std::size_t first = loaded_unchecked_ - count;
     colliding.assign(count, 1);
@@ -205,7 +212,7 @@ bool RoadmapPlanner::connect(PlanResult* result) {
   // seconds past the limit). A finder that searches all points in every call (the GPU's)
   // gets them in one call, made only where the last call's time, scaled as the square of
   // the points, says it ends within the time limit.
-  StageTimer timer(&result->times.knn, &result->gpu_calls.knn, &gpu_calls_);
+  StageTimer timer(&result->times.knn, &result->gpu_calls.knn, *checker_, *neighbors_);
   const std::size_t n = roadmap_.vertex_count();
   const int k = options_.neighbors;
   const ConfigurationMetric& metric = local_.metric();
@@ -360,7 +367,8 @@ bool RoadmapPlanner::check_edge_motions(MotionChecker* motions,
 
 void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result) {
   if (edges.empty()) return;
-  StageTimer timer(&result->times.edge_checks, &result->gpu_calls.edge_checks, &gpu_calls_);
+  StageTimer timer(&result->times.edge_checks, &result->gpu_calls.edge_checks, *checker_,
+                   *neighbors_);
   // In parts of kPart edges (PRM hands over millions), each part's verdicts kept: memory
   // stays bounded, and a stop loses only the part under way, whose edges stay unknown.
   constexpr std::size_t kPart = std::size_t(1) << 18;
@@ -383,7 +391,7 @@ void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanRe
 PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   started_ = Clock::now();
   PlanResult result;
-  const std::size_t gpu_calls_before = gpu_calls_();
+  const std::size_t gpu_calls_before = gpu_calls_of(*checker_, *neighbors_);
   local_.reset_stats();
   certifier_.reset_stats();
   const int width = scene_.space.width();
@@ -416,7 +424,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     }
     if (count > 0) {
       double sampler_seconds = 0;  // the sampler splits its time between two stages itself
-      StageTimer calls(&sampler_seconds, &result.gpu_calls.state_checks, &gpu_calls_);
+      StageTimer calls(&sampler_seconds, &result.gpu_calls.state_checks, *checker_, *neighbors_);
       add_milestones(count, &result);
     }
     report("milestones", result);
@@ -493,7 +501,8 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       std::vector<std::uint8_t> invalid;
       bool checked;
       {
-        StageTimer timer(&result.times.edge_checks, &result.gpu_calls.edge_checks, &gpu_calls_);
+        StageTimer timer(&result.times.edge_checks, &result.gpu_calls.edge_checks, *checker_,
+                         *neighbors_);
         checked =
             check_edge_motions(certifies_path() ? static_cast<MotionChecker*>(&certifier_) : &fine,
                                unchecked, &invalid);
@@ -527,7 +536,8 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     result.length_before_shortcut = path_length(local_.metric(), result.path, width);
     result.length = result.length_before_shortcut;
     if (options_.shortcut_rounds > 0) {
-      StageTimer timer(&result.times.shortcutting, &result.gpu_calls.shortcutting, &gpu_calls_);
+      StageTimer timer(&result.times.shortcutting, &result.gpu_calls.shortcutting, *checker_,
+                       *neighbors_);
       // Its own generator: the sampler's position depends on how many attempts the
       // time-sized batches made.
       std::mt19937_64 shortcut_rng(options_.seed ^ 0x5bd1e995u);
@@ -540,7 +550,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   result.samples_checked = local_.stats().samples + certifier_.stats().checks;
   result.edge_batches = local_.stats().batches + fine.stats().batches + certifier_.stats().batches;
   result.times.total = elapsed();
-  result.gpu_calls.total = gpu_calls_() - gpu_calls_before;
+  result.gpu_calls.total = gpu_calls_of(*checker_, *neighbors_) - gpu_calls_before;
   neighbors_->set_stop(nullptr);
   return result;
 }

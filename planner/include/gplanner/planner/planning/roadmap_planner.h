@@ -124,7 +124,6 @@ class RoadmapPlanner {
   std::function<bool()> stop_;
   TimedBatchSize sampling_batch_;  // sampling attempts per checker call
   TimedBatchSize knn_batch_;       // new milestones per k-NN call
-  std::function<std::size_t()> gpu_calls_;  // the checker's and the k-NN's GPU calls so far
   // The last k-NN call, for a finder that searches all points each call: its points
   // and time, to tell whether the next one would end within the time limit.
   std::size_t knn_last_points_ = 0;

@@ -21,6 +21,7 @@
 #include "gplanner/planner/output/roadmap_file.h"
 #include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/planning/neighbor_finder.h"
+#include "gplanner/planner/planning/planner_choice.h"
 #include "gplanner/planner/planning/roadmap.h"
 #include "gplanner/planner/planning/roadmap_planner.h"
 #include "gplanner/planner/planning/scene_metric.h"
@@ -42,7 +43,7 @@ std::string output_name(const gplanner::NamedFile& output) {
 // seed, time limit and milestones where given (otherwise the scene's settings).
 struct PlanRequest {
   std::string scene_file;
-  gplanner::RoadmapStrategy strategy = gplanner::RoadmapStrategy::kLazyPrm;
+  gplanner::PlannerKind planner = gplanner::PlannerKind::kAuto;
   std::string backend;
   gplanner::CheckerOptions checker_options;
   gplanner::EdgeChecks edges = gplanner::EdgeChecks::kSampled;
@@ -67,8 +68,18 @@ PlanRequest read_plan_request(int argc, char** argv) {
                      std::to_string(args.positionals().size()) + "; give exactly one");
   PlanRequest r;
   r.scene_file = args.positionals()[0];
-  if (!gplanner::parse_strategy(args.text("planner", "lazyprm"), &r.strategy))
-    throw UsageError("--planner: '" + args.text("planner", "") + "' is not one of lazyprm, prm");
+  if (!gplanner::parse_planner(args.text("planner", "auto"), &r.planner)) {
+    throw UsageError("--planner: '" + args.text("planner", "") + "' is not one of " +
+                     gplanner::planner_names());
+  }
+  if (!gplanner::keeps_roadmap(r.planner)) {
+    for (const char* option : {"milestones", "load-roadmap", "save-roadmap"}) {
+      if (args.has(option)) {
+        throw UsageError(std::string("--") + option + " applies to the roadmap planners (" +
+                         "lazyprm, prm), not to --planner " + gplanner::planner_name(r.planner));
+      }
+    }
+  }
   r.backend = args.text("backend", "gpu");
   r.checker_options.threads = static_cast<int>(args.count("threads", 0, 0, gplanner::kMaxThreads));
   if (args.has("traversal") &&
@@ -189,7 +200,7 @@ int run_plan(int argc, char** argv) {
   if (request.milestones) options.milestones = *request.milestones;
   options.edges = request.edges;
   options.certify_path = request.certify_path;
-  check_roadmap_fits(request, scene, options);
+  if (gplanner::keeps_roadmap(request.planner)) check_roadmap_fits(request, scene, options);
 
   std::unique_ptr<gplanner::CollisionChecker> checker;
   try {
@@ -202,17 +213,22 @@ int run_plan(int argc, char** argv) {
   }
   gplanner::check_start_and_goal(scene, checker.get());
   const gplanner::ConfigurationMetric metric = gplanner::make_metric(scene.space, scene.planner);
-  std::string knn_notice;
-  std::unique_ptr<gplanner::NeighborFinder> neighbors =
-      gplanner::make_neighbor_finder(metric, checker->backend(), &knn_notice);
-  if (!knn_notice.empty()) std::cerr << "notice: " << gplanner::terminal_text(knn_notice) << "\n";
+  // The roadmap planners' k-NN (the trees' nearest nodes are found on the host).
+  std::unique_ptr<gplanner::NeighborFinder> neighbors;
+  if (gplanner::keeps_roadmap(request.planner)) {  // auto may hand over to lazy PRM
+    std::string knn_notice;
+    neighbors = gplanner::make_neighbor_finder(metric, checker->backend(), &knn_notice);
+    if (!knn_notice.empty()) std::cerr << "notice: " << gplanner::terminal_text(knn_notice) << "\n";
+  }
   options.should_stop = [] { return interrupted(); };
   const bool terminal = isatty(STDERR_FILENO);
   options.progress = progress_printer(terminal);
 
-  gplanner::RoadmapPlanner planner(scene, checker.get(), neighbors.get(), request.strategy,
-                                   options);
-  if (request.load) planner.set_roadmap(gplanner::load_roadmap(scene, *request.load));
+  const bool with_roadmap = request.load || !request.save.empty() || request.milestones;
+  gplanner::ChosenPlanner planner(scene, checker.get(), neighbors.get(), request.planner,
+                                  with_roadmap, options);
+  if (request.load)
+    planner.roadmap_planner()->set_roadmap(gplanner::load_roadmap(scene, *request.load));
   // Setup (scene, checker, roadmap file) apart from planning, which --time-limit bounds.
   const double setup_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
@@ -230,11 +246,12 @@ int run_plan(int argc, char** argv) {
     written.push_back(output_name(*output));
     unwritten.erase(std::find(unwritten.begin(), unwritten.end(), output_name(*output)));
   };
-  write("--save-roadmap", [&] { gplanner::save_roadmap(planner.roadmap(), scene, request.save); });
+  write("--save-roadmap",
+        [&] { gplanner::save_roadmap(planner.roadmap_planner()->roadmap(), scene, request.save); });
   if (result.solved) {
     write("--out", [&] {
-      gplanner::write_path_file(request.out, scene, result,
-                                gplanner::strategy_name(request.strategy), checker->backend());
+      gplanner::write_path_file(request.out, scene, result, gplanner::planner_name(planner.used()),
+                                checker->backend());
     });
     write("--picture", [&] { gplanner::write_path_picture(request.picture, scene, result.path); });
   }
@@ -245,9 +262,11 @@ int run_plan(int argc, char** argv) {
   report.scene_name = scene.name;
   report.dof = scene.space.dof();
   report.width = scene.space.width();
-  report.planner = gplanner::strategy_name(request.strategy);
+  report.planner = gplanner::planner_name(planner.used());
+  report.planner_asked = gplanner::planner_name(request.planner);
+  report.planner_reason = planner.reason();
   report.backend = checker->backend();
-  report.knn = neighbors->device();
+  report.knn = neighbors ? neighbors->device() : "host";
   report.edges = gplanner::edge_checks_name(options.edges);
   report.certified_path = options.certify_path || options.edges == gplanner::EdgeChecks::kCertified;
   report.final_check_refinement = options.final_check_refinement;

@@ -13,16 +13,23 @@ std::string PlanReport::text() const {
   std::ostringstream out;
   out << std::fixed << "scene       " << terminal_text(scene_file) << " ("
       << terminal_text(scene_name) << "), " << dof << " DOF\n"
-      << "planner     " << planner << ", seed " << seed << ", " << backend
-      << " backend, k-NN on the " << knn << "\n"
+      << "planner     " << planner
+      << (planner_reason.empty() ? "" : " (" + planner_asked + ": " + planner_reason + ")")
+      << ", seed " << seed << ", " << backend << " backend, k-NN on the " << knn << "\n"
       << "edges       " << edges << ", path "
       << (certified_path ? "certified free along every motion"
                          : "re-checked at 1/" + std::to_string(final_check_refinement) +
                                " of the edge resolution")
-      << "\n"
-      << "roadmap     " << result.milestones << " milestones, " << result.edges << " edges ("
-      << result.edges_checked << " checked, " << result.samples_checked << " edge samples), "
-      << result.states_checked << " states checked, " << result.rounds << " round(s)\n";
+      << "\n";
+  if (planner == "rrtconnect") {
+    out << "trees       " << result.milestones << " nodes from the start and the goal, "
+        << result.rounds << " round(s) of extensions, " << result.samples_checked
+        << " motion samples checked\n";
+  } else {
+    out << "roadmap     " << result.milestones << " milestones, " << result.edges << " edges ("
+        << result.edges_checked << " checked, " << result.samples_checked << " edge samples), "
+        << result.states_checked << " states checked, " << result.rounds << " round(s)\n";
+  }
   if (result.solved) {
     out << "path        " << waypoints() << " waypoints, length " << std::setprecision(3)
         << result.length << " (" << result.length_before_shortcut << " before shortcutting)\n";
@@ -48,6 +55,8 @@ nlohmann::ordered_json PlanReport::json() const {
   return {{"scene", scene_file},
           {"name", scene_name},
           {"planner", planner},
+          {"planner_asked", planner_asked},
+          {"planner_reason", planner_reason},
           {"backend", backend},
           {"knn", knn},
           {"edge_checks", edges},

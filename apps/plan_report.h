@@ -16,7 +16,9 @@ struct PlanReport {
   std::string scene_file, scene_name;
   int dof = 0;
   std::size_t width = 0;       // floats per configuration
-  std::string planner;         // lazyprm, prm
+  std::string planner;         // the one that answered: lazyprm, prm, rrtconnect
+  std::string planner_asked;   // --planner: auto (the default) or one of those
+  std::string planner_reason;  // why auto chose `planner` ("" where it was named)
   std::string backend;         // the checker that ran (gpu, cpu, fcl)
   std::string knn;             // where the k-NN ran
   std::string edges;           // sampled, certified

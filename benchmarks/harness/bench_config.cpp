@@ -92,8 +92,9 @@ BenchTolerances read_tolerances(const YamlReader& in, const YAML::Node& node) {
 }  // namespace
 
 const std::vector<std::string>& bench_planners() {
-  static const std::vector<std::string> planners = {"ours-lazyprm", "ours-prm", "ompl-rrtconnect",
-                                                    "ompl-prm", "ompl-lazyprm"};
+  static const std::vector<std::string> planners = {
+      "ours-auto",       "ours-lazyprm", "ours-prm",    "ours-rrtconnect",
+      "ompl-rrtconnect", "ompl-prm",     "ompl-lazyprm"};
   return planners;
 }
 

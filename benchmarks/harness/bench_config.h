@@ -18,7 +18,7 @@ namespace gplan {
 // backend on the planning thread, OMPL's DiscreteMotionValidator), ompl-prm@gpu (OMPL's
 // planner with our validity checker and motion validator: the OMPL plugin).
 struct PlannerChoice {
-  std::string planner;  // ours-lazyprm, ours-prm, ompl-rrtconnect, ompl-prm, ompl-lazyprm
+  std::string planner;  // bench_planners(): ours-auto, ours-lazyprm, ..., ompl-lazyprm
   // gpu, cpu, fcl; for OMPL's planners through the plugin also gpu-sampled, cpu-sampled:
   // the plugin's motion validator sampled, not certified (its default).
   std::string checker;

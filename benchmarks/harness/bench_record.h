@@ -17,7 +17,8 @@ inline constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
 struct BenchRecord {
   std::string experiment;  // the configuration's name
   std::string scene;       // the scene's name (its file's stem)
-  // Planning: ours-lazyprm, ours-prm, ompl-rrtconnect, ompl-prm, ompl-lazyprm.
+  // Planning: ours-auto, ours-lazyprm, ours-prm, ours-rrtconnect, ompl-rrtconnect,
+  // ompl-prm, ompl-lazyprm.
   // Query tables: "collision-queries" (milestone computation) or "local-planning".
   std::string planner;
   // The checker that actually ran: fcl, cpu, gpu; for the query tables the gpu

@@ -4,6 +4,7 @@
 #include <ompl/config.h>
 #include <ompl/tools/benchmark/MachineSpecs.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <ctime>
@@ -12,9 +13,10 @@
 #include <stdexcept>
 #include <utility>
 
-#include "harness/query_runs.h"
 #include "gplanner/planner/output/atomic_file.h"
 #include "gplanner/planner/output/text_escaping.h"
+#include "harness/bench_config.h"
+#include "harness/query_runs.h"
 
 namespace gplan {
 namespace {
@@ -110,8 +112,8 @@ std::string describe(const BenchRecord& record) {
 }
 
 bool is_planner(const std::string& planner) {
-  return planner == "ours-lazyprm" || planner == "ours-prm" || planner == "ompl-rrtconnect" ||
-         planner == "ompl-prm" || planner == "ompl-lazyprm";
+  const std::vector<std::string>& planners = bench_planners();
+  return std::find(planners.begin(), planners.end(), planner) != planners.end();
 }
 
 // What each planning checker is, for the planner's common properties.
@@ -193,8 +195,8 @@ std::vector<LogPlanner> log_planners(const std::vector<BenchRecord>& records) {
     if (is_query_table(record.planner)) continue;
     if (!is_planner(record.planner))
       reject(record,
-             "the planner is none of ours-lazyprm, ours-prm, ompl-rrtconnect, "
-             "ompl-prm, ompl-lazyprm, collision-queries, local-planning");
+             "the planner is none of ours-auto, ours-lazyprm, ours-prm, ours-rrtconnect, "
+             "ompl-rrtconnect, ompl-prm, ompl-lazyprm, collision-queries, local-planning");
     const auto key = std::make_pair(record.planner, record.checker);
     auto found = index.find(key);
     if (found == index.end()) {
@@ -230,16 +232,15 @@ void write_planner(std::ostream& out, const LogPlanner& planner) {
 
 std::string ompl_planner_name(const std::string& planner, const std::string& checker) {
   static const std::map<std::string, std::string> kNames = {
-      {"ompl-rrtconnect", "geometric_RRTConnect"},
-      {"ompl-prm", "geometric_PRM"},
-      {"ompl-lazyprm", "geometric_LazyPRM"},
-      {"ours-lazyprm", "gplanner_LazyPRM"},
-      {"ours-prm", "gplanner_PRM"}};
+      {"ompl-rrtconnect", "geometric_RRTConnect"}, {"ompl-prm", "geometric_PRM"},
+      {"ompl-lazyprm", "geometric_LazyPRM"},       {"ours-auto", "gplanner_Auto"},
+      {"ours-lazyprm", "gplanner_LazyPRM"},        {"ours-prm", "gplanner_PRM"},
+      {"ours-rrtconnect", "gplanner_RRTConnect"}};
   const auto found = kNames.find(planner);
   if (found == kNames.end())
     throw std::invalid_argument("OMPL log: the planner '" + one_line(planner) + "' is none of " +
-                                "ours-lazyprm, ours-prm, ompl-rrtconnect, "
-                                "ompl-prm, ompl-lazyprm");
+                                "ours-auto, ours-lazyprm, ours-prm, ours-rrtconnect, "
+                                "ompl-rrtconnect, ompl-prm, ompl-lazyprm");
   return found->second + "_" + one_word(checker, "unknown");
 }
 

@@ -14,19 +14,19 @@
 #include <cmath>
 #include <memory>
 
-#include "harness/peak_memory.h"
-#include "harness/timed_checks.h"
 #include "gplanner/planner/checkers/checker_factory.h"
 #include "gplanner/planner/checkers/fcl_checker.h"
 #include "gplanner/planner/ompl/motion_validator.h"
-#include "gplanner/planner/output/path_file.h"
 #include "gplanner/planner/ompl/state_space.h"
 #include "gplanner/planner/ompl/state_validity_checker.h"
+#include "gplanner/planner/output/path_file.h"
 #include "gplanner/planner/planning/neighbor_finder.h"
 #include "gplanner/planner/planning/path_recheck.h"
-#include "gplanner/planner/planning/roadmap_planner.h"
+#include "gplanner/planner/planning/planner_choice.h"
 #include "gplanner/planner/planning/scene_metric.h"
 #include "gplanner/planner/scene/scene.h"
+#include "harness/peak_memory.h"
+#include "harness/timed_checks.h"
 
 namespace gplan {
 namespace {
@@ -165,13 +165,18 @@ BenchRecord run_ours(const gplanner::Scene& scene, const BenchConfig& config,
   options.seed = seed;
   options.time_limit_s = config.time_limit_s;
   options.should_stop = should_stop;
-  const auto strategy = choice.planner == "ours-prm" ? gplanner::RoadmapStrategy::kPrm
-                                                     : gplanner::RoadmapStrategy::kLazyPrm;
-  gplanner::RoadmapPlanner planner(scene, checker, neighbors, strategy, options);
+  gplanner::PlannerKind kind = gplanner::PlannerKind::kAuto;
+  if (!gplanner::parse_planner(choice.planner.substr(5), &kind))  // after "ours-"
+    throw std::invalid_argument("no planner of ours is called " + choice.planner);
+  gplanner::ChosenPlanner planner(scene, checker, neighbors, kind, /*with_roadmap=*/false, options);
   const gplanner::PlanResult result = planner.solve(scene.start.data(), scene.goal.data());
   record.solved = result.solved;
   record.status = result.solved ? "exact" : result.stop_reason == "stopped" ? "error" : "timeout";
   if (!result.solved) record.note = result.stop_reason;
+  if (kind == gplanner::PlannerKind::kAuto) {  // which planner answered
+    record.note += std::string(record.note.empty() ? "" : "; ") +
+                   "auto: " + gplanner::planner_name(planner.used());
+  }
   record.time_s = result.times.total;
   record.simplify_time_s = result.times.shortcutting;
   record.sampling_s = result.times.sampling;

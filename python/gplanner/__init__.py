@@ -27,7 +27,7 @@ __all__ = ["Checker", "InputError", "PlanResult", "Scene", "__version__", "load_
            "load_moveit_scene", "motionbenchmaker_problems", "plan"]
 
 
-def plan(scene, planner="lazyprm", backend="gpu", seed=None, time_limit=None, milestones=None):
+def plan(scene, planner="auto", backend="gpu", seed=None, time_limit=None, milestones=None):
     """Plans the scene's start to goal on a new checker of `backend` (see Checker.plan).
 
     A checker is built for the call (its BVHs, and on the GPU its measured routing): to
@@ -37,7 +37,7 @@ def plan(scene, planner="lazyprm", backend="gpu", seed=None, time_limit=None, mi
                                        milestones=milestones)
 
 
-def _scene_plan(self, planner="lazyprm", backend="gpu", seed=None, time_limit=None,
+def _scene_plan(self, planner="auto", backend="gpu", seed=None, time_limit=None,
                 milestones=None):
     return plan(self, planner, backend, seed, time_limit, milestones)
 

@@ -21,7 +21,7 @@
 #include "gplanner/planner/planning/neighbor_finder.h"
 #include "gplanner/planner/planning/path_recheck.h"
 #include "gplanner/planner/planning/plan_options.h"
-#include "gplanner/planner/planning/roadmap_planner.h"
+#include "gplanner/planner/planning/planner_choice.h"
 #include "gplanner/planner/planning/scene_metric.h"
 #include "gplanner/planner/planning/timed_batch_size.h"
 #include "gplanner/planner/scene/input_error.h"
@@ -141,9 +141,9 @@ class PyChecker {
 
   PyPlanResult plan(const std::string& planner, py::object seed, py::object time_limit,
                     py::object milestones) {
-    RoadmapStrategy strategy;
-    if (!parse_strategy(planner, &strategy))
-      throw py::value_error("planner: '" + planner + "' is not one of lazyprm, prm");
+    PlannerKind kind;
+    if (!parse_planner(planner, &kind))
+      throw py::value_error("planner: '" + planner + "' is not one of " + planner_names());
     PlanOptions options = options_;
     if (!seed.is_none()) options.seed = seed.cast<unsigned long long>();
     if (!time_limit.is_none()) {
@@ -154,20 +154,26 @@ class PyChecker {
     if (!milestones.is_none()) {
       const long long m = milestones.cast<long long>();
       if (m < 1) throw py::value_error("milestones: at least 1 expected");
+      if (!keeps_roadmap(kind))
+        throw py::value_error("milestones: for the roadmap planners, not for " + planner);
       options.milestones = static_cast<std::size_t>(m);
     }
     InterruptPoll poll;
     options.should_stop = [&poll] { return poll.raised(); };
     PlanResult result;
-    std::string knn;
+    std::string knn, reason;
+    PlannerKind used = kind;
     {
       py::gil_scoped_release release;
       check_start_and_goal(*scene_, checker_.get());
       const std::unique_ptr<NeighborFinder> neighbors =
           make_neighbor_finder(make_metric(scene_->space, scene_->planner), checker_->backend());
       knn = neighbors->device();
-      RoadmapPlanner roadmap_planner(*scene_, checker_.get(), neighbors.get(), strategy, options);
-      result = roadmap_planner.solve(scene_->start.data(), scene_->goal.data());
+      ChosenPlanner chosen(*scene_, checker_.get(), neighbors.get(), kind,
+                           /*with_roadmap=*/!milestones.is_none(), options);
+      result = chosen.solve(scene_->start.data(), scene_->goal.data());
+      used = chosen.used();
+      reason = chosen.reason();
     }
     poll.rethrow();
     const int width = scene_->space.width();
@@ -189,7 +195,9 @@ class PyChecker {
     calls["shortcutting"] = c.shortcutting;
     calls["total"] = c.total;
     py::dict& s = out.stats;
-    s["planner"] = strategy_name(strategy);
+    s["planner"] = planner_name(used);
+    s["planner_asked"] = planner_name(kind);
+    s["planner_reason"] = reason;
     s["backend"] = checker_->backend();
     s["knn"] = knn;
     s["edge_checks"] = edge_checks_name(options.edges);
@@ -287,7 +295,7 @@ PYBIND11_MODULE(_core, m) {
       .def("_check_seconds", &PyChecker::check_seconds, py::arg("q"), py::arg("repeat"))
       .def("check_motions", &PyChecker::check_motions, py::arg("a"), py::arg("b"),
            py::arg("certified") = true)
-      .def("plan", &PyChecker::plan, py::arg("planner") = "lazyprm", py::arg("seed") = py::none(),
+      .def("plan", &PyChecker::plan, py::arg("planner") = "auto", py::arg("seed") = py::none(),
            py::arg("time_limit") = py::none(), py::arg("milestones") = py::none())
       .def("__repr__",
            [](const PyChecker& c) { return "<gplanner.Checker on " + c.backend() + ">"; });

@@ -95,6 +95,17 @@ def test_a_plan_passes_the_fine_recheck(tmp_path):
     # The same seed, the same path.
     again = gplanner.plan(scene, backend="cpu", seed=1, time_limit=60)
     np.testing.assert_array_equal(again.path, result.path)
+    # auto (the default) took the trees here, and says so; lazy PRM when named, or when
+    # the roadmap is sized.
+    assert result.stats["planner"] == "rrtconnect" and result.stats["planner_asked"] == "auto"
+    assert result.stats["planner_reason"]
+    roadmap = checker.plan(seed=1, time_limit=60, milestones=500)
+    assert roadmap.solved and roadmap.stats["planner"] == "lazyprm"
+    assert scene.recheck(roadmap.path) == ""
+    named = checker.plan(planner="lazyprm", seed=1, time_limit=60)
+    assert named.stats["planner"] == "lazyprm" and named.stats["planner_reason"] == ""
+    with pytest.raises(ValueError, match="milestones"):
+        checker.plan(planner="rrtconnect", milestones=100)
 
 
 def test_a_path_through_the_wall_fails_the_recheck(tmp_path):
@@ -170,7 +181,7 @@ def test_bad_files_and_settings_raise_gplans_messages(tmp_path):
     with pytest.raises(ValueError, match="backend"):
         scene.checker("cuda")
     checker = scene.checker("cpu")
-    with pytest.raises(ValueError, match="planner: 'rrt' is not one of lazyprm, prm"):
+    with pytest.raises(ValueError, match="planner: 'rrt' is not one of auto, lazyprm, prm, rrtconnect"):
         checker.plan(planner="rrt")
     with pytest.raises(ValueError, match="time_limit"):
         checker.plan(time_limit=0)

@@ -51,33 +51,6 @@ class StageTimer {
   Clock::time_point start_;
 };
 
-// How long one slice of a long stage should take: 2 % of the time limit, within
-// [20 ms, 250 ms], so that the time limit is kept within the larger of 5 % and 100 ms
-// and a stop (should_stop: SIGINT, OMPL's conditions) is honoured within about a
-// slice, while every call stays long against its fixed costs (with slices of at most
-// 40 ms, lazy PRM on 16 cores took up to 1.8x its time at bc00c10 on the cpu backend:
-// benchmarks/RESULTS.md, "The time limit").
-double slice_seconds(const PlanOptions& options) {
-  if (options.slice_s > 0) return options.slice_s;
-  return std::clamp(0.02 * options.time_limit_s, 0.02, 0.25);
-}
-
-LocalPlannerOptions sliced(LocalPlannerOptions options, const PlanOptions& plan) {
-  options.batch_seconds = slice_seconds(plan);
-  return options;
-}
-
-CertifiedMotionOptions sliced(CertifiedMotionOptions options, const PlanOptions& plan) {
-  options.batch_seconds = slice_seconds(plan);
-  return options;
-}
-
-LocalPlannerOptions refined(LocalPlannerOptions options, int refinement) {
-  options.resolution_fraction /= refinement;
-  options.max_displacement /= refinement;
-  return options;
-}
-
 }  // namespace
 
 const char* strategy_name(RoadmapStrategy strategy) {

@@ -60,9 +60,11 @@ class MilestoneSampler {
                      std::vector<float>* found, PlanTimes* times);
 
   const SamplerOptions& options() const { return options_; }
+  // One candidate as sample() draws it alone (uniform, or with rotation_spread), not
+  // checked: written to q (shape [width]).
+  void draw(std::mt19937_64* rng, float* q) const;
 
  private:
-  void draw(std::mt19937_64* rng, float* q) const;
   void perturb(std::mt19937_64* rng, const float* q1, float* q2) const;
 
   const ConfigurationSpace& space_;

@@ -53,6 +53,14 @@ struct PlanOptions {
   CertifiedMotionOptions certified;
   LocalPlannerOptions local;
   SamplerOptions sampler;  // how milestones are drawn
+  // Batched RRT-Connect (TreePlanner): the longest extension under the planner's metric
+  // (<= 0: a fifth of the space's extent, OMPL's RRTConnect default), and the extensions
+  // checked a round (0: enough to fill a GPU call, or as many as the host has threads).
+  double tree_range = 0;
+  std::size_t tree_lanes = 0;
+  // > 0: the trees give up (stop_reason "trapped") where, over all extensions so far
+  // once they number 256, they added fewer nodes than this per extension.
+  double tree_trapped_growth = 0;
   // How long one slice of a long stage (a checker call, a k-NN chunk) should take, and so
   // how often a stop or the time limit is seen; 0: 2 % of the time limit, within
   // [20 ms, 250 ms]. Callers with no time limit but a stop condition (OMPL's) set it.
@@ -62,6 +70,15 @@ struct PlanOptions {
   // (OMPL's termination conditions, gplan's SIGINT), as the time limit does.
   std::function<bool()> should_stop;
 };
+
+// How long one slice of a long stage should take: slice_s, or 2 % of the time limit
+// within [20 ms, 250 ms].
+double slice_seconds(const PlanOptions& options);
+// `options` with their calls sized to take a slice each (batch_seconds).
+LocalPlannerOptions sliced(LocalPlannerOptions options, const PlanOptions& plan);
+CertifiedMotionOptions sliced(CertifiedMotionOptions options, const PlanOptions& plan);
+// `options` at `refinement` times the resolution (the fine re-check's).
+LocalPlannerOptions refined(LocalPlannerOptions options, int refinement);
 
 struct Scene;
 // The options a scene's planner settings give (seed, time limit, roadmap, shortcut,

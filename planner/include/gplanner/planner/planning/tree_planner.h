@@ -1,0 +1,122 @@
+#pragma once
+// Batched RRT-Connect: two trees, one from the start and one from the goal, grown toward
+// random configurations as RRT-Connect grows them (Kuffner and LaValle 2000; OMPL's
+// RRTConnect), with many extensions in flight at once so that each round is one checker
+// call (as pRRTC batches them on the GPU). A round draws `lanes` configurations, half for
+// each tree; for each, the tree's nearest node is extended toward it by at most `range`
+// (EXTEND), and the other tree's nearest node toward the new node in steps of `range`
+// until it reaches it or is blocked (CONNECT). Every sample of all these motions (at the
+// local planner's resolution, their ends included) goes to the checker in one call; an
+// extension that is free adds its node, and a connection adds the steps free up to its
+// first collision. A connection that reaches its new node joins the trees: the path runs
+// from the start through both trees to the goal.
+//
+// The path is then certified free (CertifiedMotions; or re-checked at a finer
+// resolution with PlanOptions::certify_path off); a tree edge that fails loses its
+// subtree, and the rounds go on. The path is shortcut as the roadmap planner's is.
+//
+// Where lazy PRM must cover the whole space with milestones before a path shows, the
+// trees grow from the start and the goal into the free space about them, which is what
+// single queries whose start or goal sits in a narrow place (a shelf, a cage) need; no
+// roadmap is kept. With PlanOptions::tree_trapped_growth set, solve() gives up early
+// (stop_reason "trapped") where the trees barely grow: fewer nodes added per extension
+// than that, over all extensions so far once they number 256, as about a piano in a doorway whose
+// every motion but a few slides into a wall; lazy PRM's milestones, bridges among them, do better
+// there (the planner choice "auto" then hands over to it). Seeded and deterministic for a given
+// seed and lane count (with a deterministic checker).
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <random>
+#include <vector>
+
+#include "gplanner/planner/checkers/collision_checker.h"
+#include "gplanner/planner/planning/certified_motions.h"
+#include "gplanner/planner/planning/local_planner.h"
+#include "gplanner/planner/planning/milestone_sampler.h"
+#include "gplanner/planner/planning/plan_options.h"
+#include "gplanner/planner/planning/plan_result.h"
+
+namespace gplanner {
+
+struct Scene;
+
+class TreePlanner {
+ public:
+  // scene and checker must outlive the planner. Of the options it uses the seed, the time
+  // limit, tree_range, tree_lanes, the local planner's resolution, the sampler's
+  // rotation_spread, the path check (certify_path, certified, final_check_refinement),
+  // shortcutting, progress and should_stop.
+  TreePlanner(const Scene& scene, CollisionChecker* checker, const PlanOptions& options);
+
+  // Plans from start to goal (each shape [width], free: callers check them first), until
+  // a path is found, the time limit passes, or should_stop says so. Each call starts
+  // with new trees.
+  PlanResult solve(const float* start, const float* goal);
+
+  // The longest extension, under the planner's metric.
+  double range() const { return range_; }
+  // Extensions a round (half from each tree).
+  std::size_t lanes() const { return lanes_; }
+  // Of the last solve(): extensions tried, and nodes they and their connections added.
+  std::size_t extensions() const { return extensions_; }
+  std::size_t nodes_added() const { return extended_; }
+  // Of the last solve(): paths through both trees that failed the path check.
+  std::size_t paths_refused() const { return paths_refused_; }
+
+ private:
+  struct Tree {
+    std::vector<float> nodes;             // shape [n, width]
+    std::vector<std::int32_t> parent;     // -1 for the root
+    std::vector<std::uint8_t> removed;    // an edge on its way to the root failed the path check
+    std::vector<std::uint8_t> certified;  // the edge to its parent passed the path check
+    std::size_t size() const { return parent.size(); }
+  };
+  // A round's extension from tree `from` and connection from the other tree.
+  struct Lane {
+    int from = 0;               // 0: the start's tree, 1: the goal's
+    std::int32_t near = -1;     // the node extended in tree `from`
+    std::int32_t other = -1;    // the other tree's node nearest to the new node
+    std::vector<float> node;    // the new node
+    int extend_samples = 0;     // samples of near -> node, node last
+    int connect_samples = 0;    // samples of other -> node, node last
+    int connect_step = 0;       // samples per step of `range` along the connection
+    bool meets_other = false;   // the new node is `other` itself
+    std::size_t first_row = 0;  // the lane's first row in the round's call
+  };
+
+  std::int32_t add_node(Tree* tree, const float* q, std::int32_t parent) const;
+  std::int32_t nearest(const Tree& tree, const float* q) const;
+  // Draws the round's lanes and their samples (rows: shape [*, width]); the first round's
+  // first lane is the straight motion from the start to the goal.
+  void draw_round(bool first_round, std::vector<Lane>* lanes, std::vector<float>* rows,
+                  PlanResult* result);
+  // Grows the trees by the round's verdicts; returns the lane that joined them, or -1.
+  int grow(const std::vector<Lane>& lanes, const std::vector<float>& rows,
+           const std::vector<std::uint8_t>& colliding, std::int32_t* joined_start,
+           std::int32_t* joined_goal);
+  // The path from the start's root to the goal's through nodes `s` and `g` (the same
+  // configuration), with each edge's tree and child node (shape [waypoints - 1]).
+  std::vector<float> path_through(std::int32_t s, std::int32_t g, std::vector<int>* edge_tree,
+                                  std::vector<std::int32_t>* edge_child) const;
+  void remove_subtree(Tree* tree, std::int32_t node) const;
+  const char* why_stop() const;
+  double elapsed() const;
+
+  const Scene& scene_;
+  CollisionChecker* checker_;
+  PlanOptions options_;
+  LocalPlanner local_;
+  CertifiedMotions certifier_;
+  MilestoneSampler sampler_;
+  double range_ = 0;
+  std::size_t lanes_ = 0;
+  std::mt19937_64 rng_;
+  std::size_t extensions_ = 0, extended_ = 0, paths_refused_ = 0;
+  Tree trees_[2];
+  std::chrono::steady_clock::time_point started_;
+  std::function<bool()> stop_;
+};
+
+}  // namespace gplanner

@@ -1,0 +1,392 @@
+#include "gplanner/planner/planning/tree_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "gplanner/common/parallel_for.h"
+#include "gplanner/planner/planning/path_shortcutting.h"
+#include "gplanner/planner/planning/scene_metric.h"
+#include "gplanner/planner/scene/scene.h"
+
+namespace gplanner {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Adds the time from construction to destruction to `*seconds`, and the GPU calls the
+// checker made meanwhile to `*calls`.
+class StageTimer {
+ public:
+  StageTimer(double* seconds, std::size_t* calls, const CollisionChecker& checker)
+      : seconds_(seconds),
+        calls_(calls),
+        checker_(checker),
+        calls_before_(checker.device_calls()),
+        start_(Clock::now()) {}
+  ~StageTimer() {
+    *seconds_ += seconds_since(start_);
+    *calls_ += checker_.device_calls() - calls_before_;
+  }
+
+ private:
+  double* seconds_;
+  std::size_t* calls_;
+  const CollisionChecker& checker_;
+  std::size_t calls_before_;
+  Clock::time_point start_;
+};
+
+// Rows a GPU round should fill: about a GPU call's fixed cost in configurations (a call
+// costs about the same up to there), and no more than this many lanes.
+constexpr std::size_t kMinLanes = 8, kMaxLanes = 512;
+// Extensions after which the trees' growth tells whether they are trapped.
+constexpr std::size_t kTrappedExtensions = 256;
+
+}  // namespace
+
+TreePlanner::TreePlanner(const Scene& scene, CollisionChecker* checker, const PlanOptions& options)
+    : scene_(scene),
+      checker_(checker),
+      options_(options),
+      local_(scene, checker, sliced(options.local, options)),
+      certifier_(scene, checker, sliced(options.certified, options)),
+      sampler_(scene.space, local_.metric(), options.sampler),
+      rng_(options.seed) {
+  range_ = options.tree_range > 0 ? options.tree_range
+                                  : 0.2 * space_extent(scene.space, local_.metric());
+  if (options.tree_lanes > 0) {
+    lanes_ = options.tree_lanes;
+  } else if (checker->configurations_per_call_cost() > 0) {
+    lanes_ = 64;  // until the first round says how many rows a lane has
+  } else {
+    lanes_ = static_cast<std::size_t>(std::max(2, resolve_thread_count(0)));
+  }
+}
+
+double TreePlanner::elapsed() const { return seconds_since(started_); }
+
+const char* TreePlanner::why_stop() const {
+  if (options_.should_stop && options_.should_stop()) return "stopped";
+  if (elapsed() >= options_.time_limit_s) return "time limit";
+  return nullptr;
+}
+
+std::int32_t TreePlanner::add_node(Tree* tree, const float* q, std::int32_t parent) const {
+  const int width = scene_.space.width();
+  tree->nodes.insert(tree->nodes.end(), q, q + width);
+  tree->parent.push_back(parent);
+  tree->removed.push_back(0);
+  tree->certified.push_back(0);
+  return static_cast<std::int32_t>(tree->size() - 1);
+}
+
+std::int32_t TreePlanner::nearest(const Tree& tree, const float* q) const {
+  const int width = scene_.space.width();
+  const ConfigurationMetric& metric = local_.metric();
+  std::int32_t best = -1;
+  float best_distance = std::numeric_limits<float>::infinity();
+  for (std::size_t i = 0; i < tree.size(); ++i) {
+    if (tree.removed[i]) continue;
+    const float d = configuration_distance(metric, &tree.nodes[i * width], q);
+    if (d < best_distance) {
+      best_distance = d;
+      best = static_cast<std::int32_t>(i);
+    }
+  }
+  return best;
+}
+
+void TreePlanner::draw_round(bool first_round, std::vector<Lane>* lanes, std::vector<float>* rows,
+                             PlanResult* result) {
+  const int width = scene_.space.width();
+  const ConfigurationMetric& metric = local_.metric();
+  const ConfigurationSpace& space = scene_.space;
+  // The targets, drawn in order (the generator's sequence does not depend on threads).
+  // The first round's first lane is the straight motion from the start to the goal.
+  std::vector<float> targets(lanes_ * width);
+  {
+    const auto started = Clock::now();
+    for (std::size_t i = 0; i < lanes_; ++i) sampler_.draw(&rng_, &targets[i * width]);
+    result->times.sampling += seconds_since(started);
+  }
+  if (first_round) std::copy_n(&trees_[1].nodes[0], width, &targets[0]);
+  lanes->assign(lanes_, Lane{});
+  const auto started = Clock::now();
+  const std::size_t tree_nodes = trees_[0].size() + trees_[1].size();
+  parallel_for(
+      lanes_, tree_nodes * lanes_ > (std::size_t(1) << 15) ? resolve_thread_count(0) : 1,
+      [&](std::size_t begin, std::size_t end, int) {
+        for (std::size_t i = begin; i < end; ++i) {
+          Lane& lane = (*lanes)[i];
+          lane.from = static_cast<int>(i % 2);
+          const Tree& tree = trees_[lane.from];
+          const Tree& other = trees_[1 - lane.from];
+          const float* target = &targets[i * width];
+          lane.near = nearest(tree, target);
+          if (lane.near < 0) continue;
+          const float* near = &tree.nodes[lane.near * width];
+          const double d = distance(metric, near, target);
+          if (!(d > 0)) {
+            lane.near = -1;  // the target is a node already
+            continue;
+          }
+          lane.node.resize(width);
+          const bool direct = first_round && i == 0;
+          if (d > range_ && !direct) {
+            space.interpolate(near, target, range_ / d, lane.node.data());
+          } else {
+            std::copy_n(target, width, lane.node.data());
+          }
+          lane.other = nearest(other, lane.node.data());
+          lane.extend_samples = local_.segments(near, lane.node.data());
+          const float* other_node = &other.nodes[lane.other * width];
+          lane.connect_samples = local_.segments(other_node, lane.node.data());
+          const double connect_distance = distance(metric, other_node, lane.node.data());
+          lane.meets_other = !(connect_distance > 0);
+          lane.connect_step =
+              connect_distance > range_
+                  ? std::max(1, static_cast<int>(lane.connect_samples * range_ / connect_distance))
+                  : lane.connect_samples;
+        }
+      },
+      1);
+  // Each lane's rows: the extension's samples, then the connection's, each ending at the
+  // new node itself (the same floats in both, so that the trees meet exactly).
+  std::size_t row_count = 0;
+  for (Lane& lane : *lanes) {
+    if (lane.near < 0) continue;
+    lane.first_row = row_count;
+    row_count += lane.extend_samples + lane.connect_samples;
+  }
+  rows->resize(row_count * width);
+  parallel_for(
+      lanes_, row_count > 4096 ? resolve_thread_count(0) : 1,
+      [&](std::size_t begin, std::size_t end, int) {
+        for (std::size_t i = begin; i < end; ++i) {
+          const Lane& lane = (*lanes)[i];
+          if (lane.near < 0) continue;
+          const float* near = &trees_[lane.from].nodes[lane.near * width];
+          const float* other = &trees_[1 - lane.from].nodes[lane.other * width];
+          float* row = &(*rows)[lane.first_row * width];
+          for (int j = 1; j <= lane.extend_samples; ++j, row += width) {
+            if (j == lane.extend_samples) {
+              std::copy_n(lane.node.data(), width, row);
+            } else {
+              space.interpolate(near, lane.node.data(), double(j) / lane.extend_samples, row);
+            }
+          }
+          for (int j = 1; j <= lane.connect_samples; ++j, row += width) {
+            if (j == lane.connect_samples) {
+              std::copy_n(lane.node.data(), width, row);
+            } else {
+              space.interpolate(other, lane.node.data(), double(j) / lane.connect_samples, row);
+            }
+          }
+        }
+      },
+      1);
+  result->times.knn += seconds_since(started);
+}
+
+int TreePlanner::grow(const std::vector<Lane>& lanes, const std::vector<float>& rows,
+                      const std::vector<std::uint8_t>& colliding, std::int32_t* joined_start,
+                      std::int32_t* joined_goal) {
+  const int width = scene_.space.width();
+  for (std::size_t i = 0; i < lanes.size(); ++i) {
+    const Lane& lane = lanes[i];
+    if (lane.near < 0) continue;
+    const std::uint8_t* extension = &colliding[lane.first_row];
+    if (std::any_of(extension, extension + lane.extend_samples, [](std::uint8_t c) { return c; }))
+      continue;  // RRT-Connect's EXTEND trapped: nothing added
+    Tree& tree = trees_[lane.from];
+    Tree& other = trees_[1 - lane.from];
+    const std::int32_t node = add_node(&tree, lane.node.data(), lane.near);
+    // CONNECT: the other tree's steps toward the new node, up to the first collision.
+    const std::uint8_t* connection = extension + lane.extend_samples;
+    const int free_samples =
+        static_cast<int>(std::find(connection, connection + lane.connect_samples, 1) - connection);
+    std::int32_t last = lane.other;
+    for (int j = lane.connect_step; j <= free_samples; j += lane.connect_step) {
+      if (j == lane.connect_samples) break;  // the new node itself: added below
+      last = add_node(&other, &rows[(lane.first_row + lane.extend_samples + j - 1) * width], last);
+    }
+    if (free_samples == lane.connect_samples) {
+      if (!lane.meets_other) last = add_node(&other, lane.node.data(), last);
+      *joined_start = lane.from == 0 ? node : last;
+      *joined_goal = lane.from == 0 ? last : node;
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+std::vector<float> TreePlanner::path_through(std::int32_t s, std::int32_t g,
+                                             std::vector<int>* edge_tree,
+                                             std::vector<std::int32_t>* edge_child) const {
+  const int width = scene_.space.width();
+  std::vector<std::int32_t> to_start;  // s up to the start's root
+  for (std::int32_t v = s; v >= 0; v = trees_[0].parent[v]) to_start.push_back(v);
+  std::vector<float> path;
+  edge_tree->clear();
+  edge_child->clear();
+  for (auto v = to_start.rbegin(); v != to_start.rend(); ++v) {
+    const float* q = &trees_[0].nodes[*v * width];
+    path.insert(path.end(), q, q + width);
+    if (trees_[0].parent[*v] >= 0) {
+      edge_tree->push_back(0);
+      edge_child->push_back(*v);
+    }
+  }
+  // g is s's configuration: the goal's tree from g's parent down to its root.
+  for (std::int32_t v = g; trees_[1].parent[v] >= 0; v = trees_[1].parent[v]) {
+    const float* q = &trees_[1].nodes[trees_[1].parent[v] * width];
+    path.insert(path.end(), q, q + width);
+    edge_tree->push_back(1);
+    edge_child->push_back(v);
+  }
+  return path;
+}
+
+void TreePlanner::remove_subtree(Tree* tree, std::int32_t node) const {
+  // Children come after their parents.
+  tree->removed[node] = 1;
+  for (std::size_t i = node + 1; i < tree->size(); ++i)
+    if (tree->parent[i] >= 0 && tree->removed[tree->parent[i]]) tree->removed[i] = 1;
+}
+
+PlanResult TreePlanner::solve(const float* start, const float* goal) {
+  started_ = Clock::now();
+  PlanResult result;
+  const std::size_t calls_before = checker_->device_calls();
+  local_.reset_stats();
+  certifier_.reset_stats();
+  const int width = scene_.space.width();
+  stop_ = [this] { return why_stop() != nullptr; };
+  local_.set_stop(stop_);
+  certifier_.set_stop(stop_);
+  sampler_.set_endpoints(start, goal);
+  for (Tree& tree : trees_) tree = Tree{};
+  add_node(&trees_[0], start, -1);
+  add_node(&trees_[1], goal, -1);
+  LocalPlanner fine(scene_, checker_,
+                    refined(sliced(options_.local, options_), options_.final_check_refinement));
+  fine.set_stop(stop_);
+  const bool certify = options_.certify_path || options_.edges == EdgeChecks::kCertified;
+  const std::size_t call_cost = checker_->configurations_per_call_cost();
+  extensions_ = extended_ = paths_refused_ = 0;
+  std::vector<Lane> lanes;
+  std::vector<float> rows;
+  std::vector<std::uint8_t> colliding;
+  double reported = -1;
+  std::vector<float> found;
+  while (found.empty()) {
+    if (const char* why = why_stop()) {
+      result.stop_reason = why;
+      break;
+    }
+    draw_round(result.rounds == 0, &lanes, &rows, &result);
+    ++result.rounds;
+    const std::size_t row_count = rows.size() / width;
+    colliding.assign(row_count, 1);
+    {
+      StageTimer timer(&result.times.edge_checks, &result.gpu_calls.edge_checks, *checker_);
+      if (row_count > 0) checker_->check(rows.data(), row_count, colliding.data());
+    }
+    result.samples_checked += row_count;
+    ++result.edge_batches;
+    result.edges_checked += 2 * lanes.size();
+    // Where a call has a fixed cost, the next round's lanes fill about that many rows.
+    if (options_.tree_lanes == 0 && call_cost > 0 && row_count > 0) {
+      const double rows_per_lane = static_cast<double>(row_count) / lanes.size();
+      lanes_ = std::clamp<std::size_t>(static_cast<std::size_t>(call_cost / 2 / rows_per_lane),
+                                       kMinLanes, kMaxLanes) &
+               ~std::size_t(1);
+    }
+    std::int32_t s = -1, g = -1;
+    const std::size_t nodes_before = trees_[0].size() + trees_[1].size();
+    const int joined = grow(lanes, rows, colliding, &s, &g);
+    extensions_ += lanes.size();
+    extended_ += trees_[0].size() + trees_[1].size() - nodes_before;
+    if (joined < 0 && options_.tree_trapped_growth > 0 && extensions_ >= kTrappedExtensions &&
+        extended_ < options_.tree_trapped_growth * extensions_) {
+      result.stop_reason = "trapped";
+      break;
+    }
+    if (joined >= 0) {
+      // The path through both trees, certified (or re-checked finely) where its edges
+      // were not yet; an edge that fails loses its subtree and the rounds go on.
+      std::vector<int> edge_tree;
+      std::vector<std::int32_t> edge_child;
+      std::vector<float> path = path_through(s, g, &edge_tree, &edge_child);
+      std::vector<std::size_t> unchecked;
+      for (std::size_t e = 0; e < edge_tree.size(); ++e)
+        if (!trees_[edge_tree[e]].certified[edge_child[e]]) unchecked.push_back(e);
+      std::vector<float> from(unchecked.size() * width), to(unchecked.size() * width);
+      for (std::size_t i = 0; i < unchecked.size(); ++i) {
+        std::copy_n(&path[unchecked[i] * width], width, &from[i * width]);
+        std::copy_n(&path[(unchecked[i] + 1) * width], width, &to[i * width]);
+      }
+      std::vector<std::uint8_t> invalid(unchecked.size(), 1);
+      bool checked;
+      {
+        StageTimer timer(&result.times.edge_checks, &result.gpu_calls.edge_checks, *checker_);
+        MotionChecker* motions = certify ? static_cast<MotionChecker*>(&certifier_) : &fine;
+        checked = motions->check_motions(from.data(), to.data(), unchecked.size(), invalid.data());
+      }
+      if (!checked) continue;  // stopped: the loop says why
+      bool valid = true;
+      for (std::size_t i = 0; i < unchecked.size(); ++i) {
+        Tree& tree = trees_[edge_tree[unchecked[i]]];
+        const std::int32_t child = edge_child[unchecked[i]];
+        if (invalid[i]) {
+          valid = false;
+          remove_subtree(&tree, child);
+        } else {
+          tree.certified[child] = 1;
+        }
+      }
+      if (valid) {
+        found = std::move(path);
+      } else {
+        ++paths_refused_;
+      }
+    }
+    if (options_.progress && (found.size() || elapsed() - reported >= 0.25)) {
+      reported = elapsed();
+      const std::size_t nodes = trees_[0].size() + trees_[1].size();
+      options_.progress({"edges", result.rounds, nodes, nodes - 2, nodes - 2, reported});
+    }
+  }
+  result.milestones = trees_[0].size() + trees_[1].size();
+  result.edges = result.milestones - 2;
+  if (!found.empty()) {
+    result.solved = true;
+    result.stop_reason = "solved";
+    result.path = std::move(found);
+    result.length_before_shortcut = path_length(local_.metric(), result.path, width);
+    result.length = result.length_before_shortcut;
+    if (options_.shortcut_rounds > 0) {
+      StageTimer timer(&result.times.shortcutting, &result.gpu_calls.shortcutting, *checker_);
+      std::mt19937_64 shortcut_rng(options_.seed ^ 0x5bd1e995u);
+      result.length = shortcut_path(scene_.space, &local_, &fine, certify ? &certifier_ : nullptr,
+                                    options_.shortcut_rounds, options_.shortcut_candidates,
+                                    &shortcut_rng, &result.path);
+      if (options_.progress) {
+        const std::size_t nodes = result.milestones;
+        options_.progress({"shortcut", result.rounds, nodes, nodes - 2, nodes - 2, elapsed()});
+      }
+    }
+  }
+  result.samples_checked += local_.stats().samples + certifier_.stats().checks;
+  result.edge_batches += local_.stats().batches + fine.stats().batches + certifier_.stats().batches;
+  result.times.total = elapsed();
+  result.gpu_calls.total = checker_->device_calls() - calls_before;
+  return result;
+}
+
+}  // namespace gplanner

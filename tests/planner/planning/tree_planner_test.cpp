@@ -1,0 +1,281 @@
+// Batched RRT-Connect (TreePlanner) and the planner choice "auto", against answers known
+// by construction: the only way through a wall is its hole; a closed wall has no way
+// through, even where the trees' sampled checks jump it; the same seed gives the same
+// path; the time limit and a stop are honoured; one checker call a round; auto hands
+// the piano to lazy PRM. And on real problems: MotionBenchMaker's shelf where lazy PRM
+// found no path in 10 s, and the PR2 on the GPU; each path passes FCL's fine re-check.
+
+#include "gplanner/planner/planning/tree_planner.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "gplanner/common/gpu_device.h"
+#include "gplanner/planner/checkers/checker_factory.h"
+#include "gplanner/planner/checkers/cpu_checker.h"
+#include "gplanner/planner/planning/planner_choice.h"
+#include "gplanner/planner/planning/scene_metric.h"
+#include "gplanner/planner/scene/scene.h"
+#include "planner/planning/costly_call_checker.h"
+#include "planner/scene_test_support.h"
+#include "test_support.h"
+
+namespace gplanner {
+namespace {
+
+// The cube of side 0.2 from x = -1 to x = 1 through a wall 2 cm thick across x = 0 whose
+// only opening is a square hole of side 0.4 about y = 0.8, z = 0.4.
+constexpr const char* kWallWithAHole = R"(name: wall_with_a_hole
+robot:
+  mesh: cube.obj
+obstacles:
+  - {name: below, box: [0.02, 10, 5.2], pose: {xyz: [0, 0, -2.4]}}
+  - {name: above, box: [0.02, 10, 4.4], pose: {xyz: [0, 0, 2.8]}}
+  - {name: left, box: [0.02, 5.6, 0.4], pose: {xyz: [0, -2.2, 0.4]}}
+  - {name: right, box: [0.02, 4, 0.4], pose: {xyz: [0, 3, 0.4]}}
+bounds:
+  min: [-2, -1.5, -1]
+  max: [2, 1.5, 1]
+start:
+  base: {xyz: [-1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
+goal:
+  base: {xyz: [1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
+)";
+
+struct Problem {
+  explicit Problem(const char* scene_text) {
+    folder.write("cube.obj", testing::kCubeObj);
+    scene = std::make_unique<Scene>(load_scene(folder.write("scene.yaml", scene_text)));
+    checker = std::make_unique<CpuChecker>(*scene);
+  }
+  PlanOptions options(unsigned long long seed, double limit = 60) const {
+    PlanOptions o = plan_options(*scene);
+    o.seed = seed;
+    o.time_limit_s = limit;
+    return o;
+  }
+  PlanResult plan(const PlanOptions& o) {
+    TreePlanner planner(*scene, checker.get(), o);
+    return planner.solve(scene->start.data(), scene->goal.data());
+  }
+  testing::ScratchFolder folder;
+  std::unique_ptr<Scene> scene;
+  std::unique_ptr<CpuChecker> checker;
+};
+
+// Where the path's centre crosses x = 0 (the wall's plane): y and z, by interpolating
+// the waypoints on either side (the cube does not turn far enough to matter here: its
+// centre must pass within the hole less half its side, whatever its rotation).
+std::vector<std::pair<double, double>> wall_crossings(const std::vector<float>& path, int width) {
+  std::vector<std::pair<double, double>> crossings;
+  for (std::size_t i = 0; i + 1 < path.size() / width; ++i) {
+    const float* a = &path[i * width];
+    const float* b = &path[(i + 1) * width];
+    if ((a[0] < 0) == (b[0] < 0)) continue;
+    const double t = a[0] / (a[0] - b[0]);
+    crossings.push_back({a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])});
+  }
+  return crossings;
+}
+
+TEST(TreePlanner, GoesThroughTheOnlyHoleOfAWall) {
+  Problem p(kWallWithAHole);
+  const PlanResult result = p.plan(p.options(1));
+  ASSERT_TRUE(result.solved) << result.stop_reason;
+  EXPECT_EQ(testing::path_problem(*p.scene, result.path), "");
+  const int width = p.scene->space.width();
+  const auto crossings = wall_crossings(result.path, width);
+  ASSERT_FALSE(crossings.empty());
+  for (const auto& [y, z] : crossings) {
+    // The hole spans y in [0.6, 1.0], z in [0.2, 0.6]; the cube's centre is at least
+    // 0.1 (half its side) inside, less the wall's half thickness reached at a slant.
+    EXPECT_GT(y, 0.6);
+    EXPECT_LT(y, 1.0);
+    EXPECT_GT(z, 0.2);
+    EXPECT_LT(z, 0.6);
+  }
+  EXPECT_EQ(result.stop_reason, "solved");
+  EXPECT_GT(result.rounds, 1u);  // the straight way is blocked
+  EXPECT_LE(result.length, result.length_before_shortcut);
+  EXPECT_EQ(result.gpu_calls.total, 0u);
+}
+
+TEST(TreePlanner, NoPathThroughAClosedWallEvenWhereSamplesJumpIt) {
+  Problem p(testing::kCubeAndThinWallScene);
+  PlanOptions options = p.options(1, 1.0);
+  // Samples a fifth of the space apart: the trees' checks jump the wall, and joined trees
+  // bring paths through it to the certification, which must refuse every one.
+  options.local.resolution_fraction = 0.2;
+  TreePlanner planner(*p.scene, p.checker.get(), options);
+  const auto started = std::chrono::steady_clock::now();
+  const PlanResult result = planner.solve(p.scene->start.data(), p.scene->goal.data());
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  EXPECT_FALSE(result.solved);
+  EXPECT_TRUE(result.path.empty());
+  EXPECT_EQ(result.stop_reason, "time limit");
+  EXPECT_LT(seconds, 1.0 + 0.1);
+  EXPECT_GT(result.rounds, 10u);
+  EXPECT_GT(planner.paths_refused(), 0u) << "the trees were to join through the wall";
+}
+
+TEST(TreePlanner, NoPathThroughAClosedWallWithTheFineRecheckEither) {
+  Problem p(testing::kCubeAndThinWallScene);
+  PlanOptions options = p.options(1, 0.5);
+  options.local.resolution_fraction = 0.2;
+  options.certify_path = false;  // re-checked at a tenth of the resolution instead
+  TreePlanner planner(*p.scene, p.checker.get(), options);
+  const PlanResult result = planner.solve(p.scene->start.data(), p.scene->goal.data());
+  EXPECT_FALSE(result.solved);
+  EXPECT_EQ(result.stop_reason, "time limit");
+  EXPECT_GT(planner.paths_refused(), 0u);
+}
+
+TEST(TreePlanner, SameSeedSamePathOtherSeedOtherPath) {
+  Problem p(kWallWithAHole);
+  const PlanResult a = p.plan(p.options(3));
+  const PlanResult b = p.plan(p.options(3));
+  const PlanResult c = p.plan(p.options(4));
+  ASSERT_TRUE(a.solved && b.solved && c.solved);
+  EXPECT_EQ(a.path, b.path);
+  EXPECT_EQ(a.rounds, b.rounds);
+  EXPECT_NE(a.path, c.path);
+}
+
+TEST(TreePlanner, StopConditionIsHonoured) {
+  Problem p(testing::kCubeAndThinWallScene);
+  PlanOptions options = p.options(1, 300);
+  const auto started = std::chrono::steady_clock::now();
+  options.should_stop = [&] {
+    return std::chrono::steady_clock::now() - started > std::chrono::milliseconds(200);
+  };
+  const PlanResult result = p.plan(options);
+  EXPECT_FALSE(result.solved);
+  EXPECT_EQ(result.stop_reason, "stopped");
+  EXPECT_LT(result.times.total, 0.2 + 0.1);
+}
+
+// Where a call has a fixed cost, each round is one call, and the rounds fill calls of
+// about that many configurations (a checker that counts each call as a GPU call).
+TEST(TreePlanner, OneCallARoundWhereCallsCost) {
+  Problem p(kWallWithAHole);
+  testing::CostlyCallChecker costly(*p.scene, 8192);
+  TreePlanner planner(*p.scene, &costly, p.options(1));
+  const PlanResult result = planner.solve(p.scene->start.data(), p.scene->goal.data());
+  ASSERT_TRUE(result.solved) << result.stop_reason;
+  EXPECT_EQ(testing::path_problem(*p.scene, result.path), "");
+  const PlanGpuCalls& c = result.gpu_calls;
+  EXPECT_EQ(c.total, costly.device_calls());
+  EXPECT_EQ(c.total, c.edge_checks + c.shortcutting);
+  EXPECT_EQ(c.state_checks + c.knn, 0u);
+  // Rounds, and the certification of each path found (a round or more each).
+  EXPECT_GE(c.edge_checks, result.rounds + 1);
+  EXPECT_LE(c.edge_checks, result.rounds + 20);
+  EXPECT_GE(planner.lanes(), 8u);
+}
+
+TEST(PlannerChoice, NamesAndParsing) {
+  for (const PlannerKind kind :
+       {PlannerKind::kAuto, PlannerKind::kLazyPrm, PlannerKind::kPrm, PlannerKind::kRrtConnect}) {
+    PlannerKind parsed = PlannerKind::kPrm;
+    ASSERT_TRUE(parse_planner(planner_name(kind), &parsed));
+    EXPECT_EQ(parsed, kind);
+  }
+  PlannerKind unchanged = PlannerKind::kPrm;
+  EXPECT_FALSE(parse_planner("RRTConnect", &unchanged));
+  EXPECT_FALSE(parse_planner("", &unchanged));
+  EXPECT_EQ(unchanged, PlannerKind::kPrm);
+  EXPECT_FALSE(keeps_roadmap(PlannerKind::kRrtConnect));
+  EXPECT_TRUE(keeps_roadmap(PlannerKind::kAuto));
+}
+
+struct ShippedScene {
+  explicit ShippedScene(const std::string& name)
+      : scene(load_scene(testing::project_root() + "/scenes/" + name)),
+        checker(scene),
+        neighbors(make_neighbor_finder(make_metric(scene.space, scene.planner), "cpu")) {}
+  Scene scene;
+  CpuChecker checker;
+  std::unique_ptr<NeighborFinder> neighbors;
+};
+
+// The piano's doorway traps the trees (almost every extension slides into a wall): auto
+// hands over to lazy PRM, whose path it returns, the trees' time and calls counted in.
+TEST(PlannerChoice, AutoHandsTheTrappedPianoToLazyPrm) {
+  ShippedScene s("piano.yaml");
+  PlanOptions options = plan_options(s.scene);
+  options.seed = 1;
+  ChosenPlanner planner(s.scene, &s.checker, s.neighbors.get(), PlannerKind::kAuto, false, options);
+  EXPECT_EQ(planner.used(), PlannerKind::kRrtConnect);
+  const PlanResult result = planner.solve(s.scene.start.data(), s.scene.goal.data());
+  ASSERT_TRUE(result.solved) << result.stop_reason;
+  EXPECT_EQ(planner.used(), PlannerKind::kLazyPrm);
+  EXPECT_NE(planner.reason().find("trapped"), std::string::npos) << planner.reason();
+  EXPECT_EQ(testing::path_problem(s.scene, result.path), "");
+  EXPECT_GT(result.milestones, 2000u);  // the roadmap's
+  EXPECT_GT(result.times.total, result.times.knn);
+}
+
+TEST(PlannerChoice, AutoKeepsTheTreesWhereTheyGrowAndTakesLazyPrmForRoadmaps) {
+  ShippedScene s("pr2_base_arm.yaml");
+  PlanOptions options = plan_options(s.scene);
+  options.seed = 1;
+  ChosenPlanner trees(s.scene, &s.checker, s.neighbors.get(), PlannerKind::kAuto, false, options);
+  const PlanResult result = trees.solve(s.scene.start.data(), s.scene.goal.data());
+  ASSERT_TRUE(result.solved) << result.stop_reason;
+  EXPECT_EQ(trees.used(), PlannerKind::kRrtConnect);
+  EXPECT_EQ(testing::path_problem(s.scene, result.path), "");
+  ChosenPlanner roadmap(s.scene, &s.checker, s.neighbors.get(), PlannerKind::kAuto, true, options);
+  EXPECT_EQ(roadmap.used(), PlannerKind::kLazyPrm);
+  ASSERT_NE(roadmap.roadmap_planner(), nullptr);
+  ChosenPlanner named(s.scene, &s.checker, nullptr, PlannerKind::kRrtConnect, false, options);
+  EXPECT_EQ(named.roadmap_planner(), nullptr);
+  EXPECT_EQ(named.reason(), "");
+}
+
+// MotionBenchMaker's bookshelf_small 0005: lazy PRM on the GPU found no path in 10 s
+// (benchmarks/RESULTS.md, 5d49a88); the trees find one on the cpu backend.
+TEST(TreePlanner, SolvesAShelfProblemLazyPrmDidNot) {
+  const std::string data = testing::shared_data();
+  if (data.empty()) GTEST_SKIP() << "no ../shared/data (set GPLANNER_SHARED_DATA)";
+  const std::string panda = data + "/motionbenchmaker/panda";
+  const testing::ScratchFolder folder;
+  const std::string file = folder.write(
+      "shelf.yaml", "name: bookshelf_small_0005\nrobot:\n  urdf: " + panda +
+                        "/robot/panda.urdf\n  srdf: " + panda + "/robot/panda.srdf\n  packages: " +
+                        "{meshes: " + panda + "/robot/meshes}\nmoveit:\n  scene: " + panda +
+                        "/problems/bookshelf_small_panda/scene0005.yaml\n  request: " + panda +
+                        "/problems/bookshelf_small_panda/request0005.yaml\n");
+  const Scene scene = load_scene(file);
+  CpuChecker checker(scene);
+  PlanOptions options = plan_options(scene);
+  options.seed = 1;
+  options.time_limit_s = 120;
+  TreePlanner planner(scene, &checker, options);
+  const PlanResult result = planner.solve(scene.start.data(), scene.goal.data());
+  ASSERT_TRUE(result.solved) << result.stop_reason;
+  EXPECT_EQ(testing::path_problem(scene, result.path), "");
+}
+
+TEST(TreePlannerGpu, PathsPassTheRecheckOnTheGpuBackend) {
+  const GpuDevice device = query_gpu_device();
+  if (!device.available) GTEST_SKIP() << "no GPU: " << device.reason;
+  for (const char* name : {"pr2_base_arm.yaml", "humanoid.yaml"}) {
+    const Scene scene = load_scene(testing::project_root() + "/scenes/" + name);
+    std::unique_ptr<CollisionChecker> checker = make_collision_checker(scene, "gpu");
+    for (unsigned long long seed = 1; seed <= 3; ++seed) {
+      PlanOptions options = plan_options(scene);
+      options.seed = seed;
+      TreePlanner planner(scene, checker.get(), options);
+      const PlanResult result = planner.solve(scene.start.data(), scene.goal.data());
+      ASSERT_TRUE(result.solved) << name << " seed " << seed << ": " << result.stop_reason;
+      EXPECT_EQ(testing::path_problem(scene, result.path), "") << name << " seed " << seed;
+      EXPECT_GT(result.gpu_calls.edge_checks, 0u);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace gplanner

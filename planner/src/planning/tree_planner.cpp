@@ -44,8 +44,6 @@ class StageTimer {
 // Rows a GPU round should fill: about a GPU call's fixed cost in configurations (a call
 // costs about the same up to there), and no more than this many lanes.
 constexpr std::size_t kMinLanes = 8, kMaxLanes = 512;
-// Extensions after which the trees' growth tells whether they are trapped.
-constexpr std::size_t kTrappedExtensions = 256;
 
 }  // namespace
 
@@ -278,7 +276,7 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
   fine.set_stop(stop_);
   const bool certify = options_.certify_path || options_.edges == EdgeChecks::kCertified;
   const std::size_t call_cost = checker_->configurations_per_call_cost();
-  extensions_ = extended_ = paths_refused_ = 0;
+  paths_refused_ = 0;
   std::vector<Lane> lanes;
   std::vector<float> rows;
   std::vector<std::uint8_t> colliding;
@@ -308,16 +306,7 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
                ~std::size_t(1);
     }
     std::int32_t s = -1, g = -1;
-    const std::size_t nodes_before = trees_[0].size() + trees_[1].size();
-    const int joined = grow(lanes, rows, colliding, &s, &g);
-    extensions_ += lanes.size();
-    extended_ += trees_[0].size() + trees_[1].size() - nodes_before;
-    if (joined < 0 && options_.tree_trapped_growth > 0 && extensions_ >= kTrappedExtensions &&
-        extended_ < options_.tree_trapped_growth * extensions_) {
-      result.stop_reason = "trapped";
-      break;
-    }
-    if (joined >= 0) {
+    if (grow(lanes, rows, colliding, &s, &g) >= 0) {
       // The path through both trees, certified (or re-checked finely) where its edges
       // were not yet; an edge that fails loses its subtree and the rounds go on.
       std::vector<int> edge_tree;

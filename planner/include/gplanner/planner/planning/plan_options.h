@@ -58,9 +58,6 @@ struct PlanOptions {
   // checked a round (0: enough to fill a GPU call, or as many as the host has threads).
   double tree_range = 0;
   std::size_t tree_lanes = 0;
-  // > 0: the trees give up (stop_reason "trapped") where, over all extensions so far
-  // once they number 256, they added fewer nodes than this per extension.
-  double tree_trapped_growth = 0;
   // How long one slice of a long stage (a checker call, a k-NN chunk) should take, and so
   // how often a stop or the time limit is seen; 0: 2 % of the time limit, within
   // [20 ms, 250 ms]. Callers with no time limit but a stop condition (OMPL's) set it.

@@ -18,12 +18,10 @@
 // Where lazy PRM must cover the whole space with milestones before a path shows, the
 // trees grow from the start and the goal into the free space about them, which is what
 // single queries whose start or goal sits in a narrow place (a shelf, a cage) need; no
-// roadmap is kept. With PlanOptions::tree_trapped_growth set, solve() gives up early
-// (stop_reason "trapped") where the trees barely grow: fewer nodes added per extension
-// than that, over all extensions so far once they number 256, as about a piano in a doorway whose
-// every motion but a few slides into a wall; lazy PRM's milestones, bridges among them, do better
-// there (the planner choice "auto" then hands over to it). Seeded and deterministic for a given
-// seed and lane count (with a deterministic checker).
+// roadmap is kept. Where only a few poses pass a doorway between free regions (a piano,
+// a helicopter), almost every extension hits a wall and lazy PRM does better
+// (planner_choice.h). Seeded and deterministic for a given seed and lane count (with a
+// deterministic checker).
 
 #include <chrono>
 #include <cstdint>
@@ -59,9 +57,6 @@ class TreePlanner {
   double range() const { return range_; }
   // Extensions a round (half from each tree).
   std::size_t lanes() const { return lanes_; }
-  // Of the last solve(): extensions tried, and nodes they and their connections added.
-  std::size_t extensions() const { return extensions_; }
-  std::size_t nodes_added() const { return extended_; }
   // Of the last solve(): paths through both trees that failed the path check.
   std::size_t paths_refused() const { return paths_refused_; }
 
@@ -113,7 +108,7 @@ class TreePlanner {
   double range_ = 0;
   std::size_t lanes_ = 0;
   std::mt19937_64 rng_;
-  std::size_t extensions_ = 0, extended_ = 0, paths_refused_ = 0;
+  std::size_t paths_refused_ = 0;
   Tree trees_[2];
   std::chrono::steady_clock::time_point started_;
   std::function<bool()> stop_;

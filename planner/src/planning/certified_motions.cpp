@@ -33,7 +33,7 @@ CertifiedMotions::CertifiedMotions(const Scene& scene, CollisionChecker* checker
     : scene_(scene),
       checker_(checker),
       bound_(scene.robot, scene.space),
-      batch_size_(options.batch_seconds, 1024, 256, std::max<std::size_t>(options.max_batch, 256)) {
+      batch_size_(options.batch_seconds, 256, 64, std::max<std::size_t>(options.max_batch, 64)) {
   step_ = options.step;
   if (!(step_ > 0)) {
     // Larger steps make fewer segments but larger clearances, and the cost of a check

@@ -1,6 +1,7 @@
 #include "gplanner/planner/planning/tree_planner.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -83,12 +84,20 @@ std::int32_t TreePlanner::add_node(Tree* tree, const float* q, std::int32_t pare
   return static_cast<std::int32_t>(tree->size() - 1);
 }
 
-std::int32_t TreePlanner::nearest(const Tree& tree, const float* q) const {
+std::int32_t TreePlanner::nearest(const Tree& tree, const float* q, bool may_poll,
+                                  std::atomic<bool>* stopped) const {
   const int width = scene_.space.width();
   const ConfigurationMetric& metric = local_.metric();
   std::int32_t best = -1;
   float best_distance = std::numeric_limits<float>::infinity();
+  // Large trees take long: the stop condition every kPoll nodes (polled by one thread,
+  // the others seeing its flag).
+  constexpr std::size_t kPoll = std::size_t(1) << 14;
   for (std::size_t i = 0; i < tree.size(); ++i) {
+    if (i % kPoll == kPoll - 1) {
+      if (may_poll && stop_()) stopped->store(true);
+      if (stopped->load(std::memory_order_relaxed)) return -1;
+    }
     if (tree.removed[i]) continue;
     const float d = configuration_distance(metric, &tree.nodes[i * width], q);
     if (d < best_distance) {
@@ -116,16 +125,17 @@ void TreePlanner::draw_round(bool first_round, std::vector<Lane>* lanes, std::ve
   lanes->assign(lanes_, Lane{});
   const auto started = Clock::now();
   const std::size_t tree_nodes = trees_[0].size() + trees_[1].size();
+  std::atomic<bool> stopped{false};
   parallel_for(
       lanes_, tree_nodes * lanes_ > (std::size_t(1) << 15) ? resolve_thread_count(0) : 1,
-      [&](std::size_t begin, std::size_t end, int) {
+      [&](std::size_t begin, std::size_t end, int thread) {
         for (std::size_t i = begin; i < end; ++i) {
           Lane& lane = (*lanes)[i];
           lane.from = static_cast<int>(i % 2);
           const Tree& tree = trees_[lane.from];
           const Tree& other = trees_[1 - lane.from];
           const float* target = &targets[i * width];
-          lane.near = nearest(tree, target);
+          lane.near = nearest(tree, target, thread == 0, &stopped);
           if (lane.near < 0) continue;
           const float* near = &tree.nodes[lane.near * width];
           const double d = distance(metric, near, target);
@@ -140,7 +150,11 @@ void TreePlanner::draw_round(bool first_round, std::vector<Lane>* lanes, std::ve
           } else {
             std::copy_n(target, width, lane.node.data());
           }
-          lane.other = nearest(other, lane.node.data());
+          lane.other = nearest(other, lane.node.data(), thread == 0, &stopped);
+          if (lane.other < 0) {
+            lane.near = -1;
+            continue;
+          }
           lane.extend_samples = local_.segments(near, lane.node.data());
           const float* other_node = &other.nodes[lane.other * width];
           lane.connect_samples = local_.segments(other_node, lane.node.data());
@@ -153,6 +167,9 @@ void TreePlanner::draw_round(bool first_round, std::vector<Lane>* lanes, std::ve
         }
       },
       1);
+  if (stopped) {  // the round is dropped; the caller sees why
+    for (Lane& lane : *lanes) lane.near = -1;
+  }
   // Each lane's rows: the extension's samples, then the connection's, each ending at the
   // new node itself (the same floats in both, so that the trees meet exactly).
   std::size_t row_count = 0;

@@ -23,6 +23,7 @@
 // (planner_choice.h). Seeded and deterministic for a given seed and lane count (with a
 // deterministic checker).
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -82,7 +83,10 @@ class TreePlanner {
   };
 
   std::int32_t add_node(Tree* tree, const float* q, std::int32_t parent) const;
-  std::int32_t nearest(const Tree& tree, const float* q) const;
+  // The tree's nearest node to q not removed, or -1 where the stop came first (polled
+  // where may_poll, which sets *stopped; seen in *stopped otherwise).
+  std::int32_t nearest(const Tree& tree, const float* q, bool may_poll,
+                       std::atomic<bool>* stopped) const;
   // Draws the round's lanes and their samples (rows: shape [*, width]); the first round's
   // first lane is the straight motion from the start to the goal.
   void draw_round(bool first_round, std::vector<Lane>* lanes, std::vector<float>* rows,

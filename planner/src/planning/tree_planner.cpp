@@ -208,6 +208,51 @@ void TreePlanner::draw_round(bool first_round, std::vector<Lane>* lanes, std::ve
   result->times.knn += seconds_since(started);
 }
 
+std::size_t TreePlanner::check_on_host(const std::vector<Lane>& lanes,
+                                       const std::vector<float>& rows,
+                                       std::vector<std::uint8_t>* colliding) {
+  const int width = scene_.space.width();
+  std::atomic<std::size_t> checked{0};
+  parallel_for(
+      lanes.size(), resolve_thread_count(0),
+      [&](std::size_t begin, std::size_t end, int) {
+        std::size_t lane_checks = 0;
+        for (std::size_t i = begin; i < end; ++i) {
+          const Lane& lane = lanes[i];
+          if (lane.near < 0) continue;
+          auto check = [&](int j) {  // row j of the lane; true where it collides
+            const std::size_t row = lane.first_row + j;
+            checker_->check(&rows[row * width], 1, &(*colliding)[row]);
+            ++lane_checks;
+            return (*colliding)[row] != 0;
+          };
+          // The extension coarse to fine (the new node first): one collision ends it, and
+          // the rows left unchecked stay colliding, as the connection's then do.
+          if (check(lane.extend_samples - 1)) continue;
+          bool free = true;
+          for (const int j : coarse_to_fine_order(lane.extend_samples)) {
+            if (check(j - 1)) {
+              free = false;
+              break;
+            }
+          }
+          if (!free) continue;
+          // The connection in order from the other tree, up to its first collision.
+          for (int j = 0; j < lane.connect_samples - 1; ++j)
+            if (check(lane.extend_samples + j)) break;
+          // Its last row is the new node, checked above.
+          const std::size_t last = lane.first_row + lane.extend_samples + lane.connect_samples - 1;
+          const std::uint8_t* connection = &(*colliding)[lane.first_row + lane.extend_samples];
+          if (std::find(connection, connection + lane.connect_samples - 1, 1) ==
+              connection + lane.connect_samples - 1)
+            (*colliding)[last] = 0;
+        }
+        checked += lane_checks;
+      },
+      1);
+  return checked;
+}
+
 int TreePlanner::grow(const std::vector<Lane>& lanes, const std::vector<float>& rows,
                       const std::vector<std::uint8_t>& colliding, std::int32_t* joined_start,
                       std::int32_t* joined_goal) {
@@ -310,9 +355,13 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
     colliding.assign(row_count, 1);
     {
       StageTimer timer(&result.times.edge_checks, &result.gpu_calls.edge_checks, *checker_);
-      if (row_count > 0) checker_->check(rows.data(), row_count, colliding.data());
+      if (call_cost > 0) {
+        if (row_count > 0) checker_->check(rows.data(), row_count, colliding.data());
+        result.samples_checked += row_count;
+      } else {
+        result.samples_checked += check_on_host(lanes, rows, &colliding);
+      }
     }
-    result.samples_checked += row_count;
     ++result.edge_batches;
     result.edges_checked += 2 * lanes.size();
     // Where a call has a fixed cost, the next round's lanes fill about that many rows.

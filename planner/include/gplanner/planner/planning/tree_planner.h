@@ -91,6 +91,12 @@ class TreePlanner {
   // first lane is the straight motion from the start to the goal.
   void draw_round(bool first_round, std::vector<Lane>* lanes, std::vector<float>* rows,
                   PlanResult* result);
+  // The round's rows checked on the host (the CPU backends), each lane on its own thread
+  // with RRT-Connect's early stops: the extension coarse to fine up to a collision, the
+  // connection in order up to its first; rows left unchecked stay colliding. Returns the
+  // rows checked.
+  std::size_t check_on_host(const std::vector<Lane>& lanes, const std::vector<float>& rows,
+                            std::vector<std::uint8_t>* colliding);
   // Grows the trees by the round's verdicts; returns the lane that joined them, or -1.
   int grow(const std::vector<Lane>& lanes, const std::vector<float>& rows,
            const std::vector<std::uint8_t>& colliding, std::int32_t* joined_start,

@@ -177,6 +177,23 @@ TEST(TreePlanner, OneCallARoundWhereCallsCost) {
   EXPECT_GE(planner.lanes(), 8u);
 }
 
+// The CPU backend's checks per lane with early stops grow the same trees as one call of
+// every row: the same path for the same seed and lanes.
+TEST(TreePlanner, HostChecksWithEarlyStopsGrowTheSameTreesAsOneCall) {
+  Problem p(kWallWithAHole);
+  PlanOptions options = p.options(5);
+  options.tree_lanes = 8;
+  options.shortcut_rounds = 0;
+  const PlanResult on_host = p.plan(options);
+  testing::CostlyCallChecker costly(*p.scene, 8192);
+  TreePlanner one_call(*p.scene, &costly, options);
+  const PlanResult in_calls = one_call.solve(p.scene->start.data(), p.scene->goal.data());
+  ASSERT_TRUE(on_host.solved && in_calls.solved);
+  EXPECT_EQ(on_host.path, in_calls.path);
+  EXPECT_EQ(on_host.rounds, in_calls.rounds);
+  EXPECT_EQ(on_host.milestones, in_calls.milestones);
+}
+
 TEST(PlannerChoice, NamesAndParsing) {
   for (const PlannerKind kind :
        {PlannerKind::kAuto, PlannerKind::kLazyPrm, PlannerKind::kPrm, PlannerKind::kRrtConnect}) {

@@ -51,7 +51,7 @@ const char* const kUsage =
     "      the planner uses, not only the path's\n"
     "  gplan bench CONFIG ...\n"
     "      deprecated alias of gplan-bench CONFIG ... (the benchmark program installed\n"
-    "      beside gplan; gplan-bench --help), to be removed in 0.3\n"
+    "      beside gplan; gplan-bench --help), to be removed in 0.4\n"
     "  gplan info\n"
     "      gplanner's version, how it was built and which GPU it can use\n"
     "Output files (--out, --picture, --save-roadmap) are checked before any work: a\n"

@@ -42,8 +42,8 @@ class StageTimer {
   Clock::time_point start_;
 };
 
-// Rows a GPU round should fill: about a GPU call's fixed cost in configurations (a call
-// costs about the same up to there), and no more than this many lanes.
+// Where calls have a fixed cost, a round's lanes fill about half of it in rows (a call
+// costs about the same up to there), within these bounds.
 constexpr std::size_t kMinLanes = 8, kMaxLanes = 512;
 
 }  // namespace

@@ -319,6 +319,92 @@ void TreePlanner::remove_subtree(Tree* tree, std::int32_t node) const {
     if (tree->parent[i] >= 0 && tree->removed[tree->parent[i]]) tree->removed[i] = 1;
 }
 
+TreePlanner::PathOutcome TreePlanner::finish_path(const std::vector<float>& path,
+                                                  const std::vector<int>& edge_tree,
+                                                  const std::vector<std::int32_t>& edge_child,
+                                                  LocalPlanner* fine, bool certify,
+                                                  PlanResult* result, std::vector<float>* found) {
+  const int width = scene_.space.width();
+  std::vector<std::size_t> unchecked;  // the path's edges not yet certified
+  for (std::size_t e = 0; e < edge_tree.size(); ++e)
+    if (!trees_[edge_tree[e]].certified[edge_child[e]]) unchecked.push_back(e);
+  std::vector<float> from, to;
+  auto add_segments = [&](const std::vector<float>& p, const std::vector<std::size_t>& segments) {
+    for (const std::size_t i : segments) {
+      from.insert(from.end(), &p[i * width], &p[(i + 1) * width]);
+      to.insert(to.end(), &p[(i + 1) * width], &p[(i + 2) * width]);
+    }
+  };
+  // Applies the certification's verdicts on the tree path's unchecked edges (from
+  // verdicts[first]); false where one failed (its subtree removed).
+  auto apply = [&](const std::vector<std::uint8_t>& verdicts, std::size_t first) {
+    bool valid = true;
+    for (std::size_t i = 0; i < unchecked.size(); ++i) {
+      Tree& tree = trees_[edge_tree[unchecked[i]]];
+      const std::int32_t child = edge_child[unchecked[i]];
+      if (verdicts[first + i]) {
+        valid = false;
+        remove_subtree(&tree, child);
+      } else {
+        tree.certified[child] = 1;
+      }
+    }
+    return valid;
+  };
+  std::size_t tree_first = 0;  // where the tree path's edges are among the verdicts
+  std::vector<std::uint8_t> invalid;
+  if (certify && options_.shortcut_rounds > 0 && !unchecked.empty()) {
+    // Shortcut first, at the fine resolution, then certify the shortened path whole: the
+    // tree path's long detours need no certificate where the shortcut passes. Where calls
+    // cost (the GPU), the tree path's edges are certified in the same call, for the case
+    // where the shortcut fails; otherwise after it, only then.
+    std::vector<float> shortcut = path;
+    {
+      StageTimer timer(&result->times.shortcutting, &result->gpu_calls.shortcutting, *checker_);
+      std::mt19937_64 shortcut_rng(options_.seed ^ 0x5bd1e995u);
+      shortcut_path(scene_.space, &local_, fine, nullptr, options_.shortcut_rounds,
+                    options_.shortcut_candidates, &shortcut_rng, &shortcut);
+    }
+    std::vector<std::size_t> all(shortcut.size() / width - 1);
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+    add_segments(shortcut, all);
+    const bool with_tree = checker_->configurations_per_call_cost() > 0;
+    if (with_tree) add_segments(path, unchecked);
+    tree_first = all.size();
+    invalid.assign(from.size() / width, 1);
+    {
+      StageTimer timer(&result->times.shortcutting, &result->gpu_calls.shortcutting, *checker_);
+      if (!certifier_.check_motions(from.data(), to.data(), invalid.size(), invalid.data()))
+        return PathOutcome::kStopped;
+    }
+    if (std::none_of(invalid.begin(), invalid.begin() + all.size(),
+                     [](std::uint8_t v) { return v; })) {
+      if (with_tree) apply(invalid, tree_first);
+      *found = std::move(shortcut);
+      return PathOutcome::kShortened;
+    }
+    if (with_tree) {
+      if (!apply(invalid, tree_first)) return PathOutcome::kRefused;
+      *found = path;
+      return PathOutcome::kFound;
+    }
+    from.clear();
+    to.clear();
+  }
+  // The tree path's unchecked edges, certified (or re-checked finely).
+  add_segments(path, unchecked);
+  invalid.assign(unchecked.size(), 1);
+  {
+    StageTimer timer(&result->times.edge_checks, &result->gpu_calls.edge_checks, *checker_);
+    MotionChecker* motions = certify ? static_cast<MotionChecker*>(&certifier_) : fine;
+    if (!motions->check_motions(from.data(), to.data(), unchecked.size(), invalid.data()))
+      return PathOutcome::kStopped;
+  }
+  if (!apply(invalid, 0)) return PathOutcome::kRefused;
+  *found = path;
+  return PathOutcome::kFound;
+}
+
 PlanResult TreePlanner::solve(const float* start, const float* goal) {
   started_ = Clock::now();
   PlanResult result;
@@ -344,6 +430,7 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
   std::vector<std::uint8_t> colliding;
   double reported = -1;
   std::vector<float> found;
+  bool shortened = false;  // found is the shortcut path, certified
   while (found.empty()) {
     if (const char* why = why_stop()) {
       result.stop_reason = why;
@@ -373,42 +460,15 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
     }
     std::int32_t s = -1, g = -1;
     if (grow(lanes, rows, colliding, &s, &g) >= 0) {
-      // The path through both trees, certified (or re-checked finely) where its edges
-      // were not yet; an edge that fails loses its subtree and the rounds go on.
       std::vector<int> edge_tree;
       std::vector<std::int32_t> edge_child;
-      std::vector<float> path = path_through(s, g, &edge_tree, &edge_child);
-      std::vector<std::size_t> unchecked;
-      for (std::size_t e = 0; e < edge_tree.size(); ++e)
-        if (!trees_[edge_tree[e]].certified[edge_child[e]]) unchecked.push_back(e);
-      std::vector<float> from(unchecked.size() * width), to(unchecked.size() * width);
-      for (std::size_t i = 0; i < unchecked.size(); ++i) {
-        std::copy_n(&path[unchecked[i] * width], width, &from[i * width]);
-        std::copy_n(&path[(unchecked[i] + 1) * width], width, &to[i * width]);
-      }
-      std::vector<std::uint8_t> invalid(unchecked.size(), 1);
-      bool checked;
-      {
-        StageTimer timer(&result.times.edge_checks, &result.gpu_calls.edge_checks, *checker_);
-        MotionChecker* motions = certify ? static_cast<MotionChecker*>(&certifier_) : &fine;
-        checked = motions->check_motions(from.data(), to.data(), unchecked.size(), invalid.data());
-      }
-      if (!checked) continue;  // stopped: the loop says why
-      bool valid = true;
-      for (std::size_t i = 0; i < unchecked.size(); ++i) {
-        Tree& tree = trees_[edge_tree[unchecked[i]]];
-        const std::int32_t child = edge_child[unchecked[i]];
-        if (invalid[i]) {
-          valid = false;
-          remove_subtree(&tree, child);
-        } else {
-          tree.certified[child] = 1;
-        }
-      }
-      if (valid) {
-        found = std::move(path);
-      } else {
-        ++paths_refused_;
+      const std::vector<float> path = path_through(s, g, &edge_tree, &edge_child);
+      const PathOutcome outcome =
+          finish_path(path, edge_tree, edge_child, &fine, certify, &result, &found);
+      if (outcome == PathOutcome::kRefused) ++paths_refused_;
+      if (outcome == PathOutcome::kShortened || outcome == PathOutcome::kFound) {
+        result.length_before_shortcut = path_length(local_.metric(), path, width);
+        shortened = outcome == PathOutcome::kShortened;
       }
     }
     if (options_.progress && (found.size() || elapsed() - reported >= 0.25)) {
@@ -423,9 +483,8 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
     result.solved = true;
     result.stop_reason = "solved";
     result.path = std::move(found);
-    result.length_before_shortcut = path_length(local_.metric(), result.path, width);
-    result.length = result.length_before_shortcut;
-    if (options_.shortcut_rounds > 0) {
+    result.length = path_length(local_.metric(), result.path, width);
+    if (options_.shortcut_rounds > 0 && !shortened) {
       StageTimer timer(&result.times.shortcutting, &result.gpu_calls.shortcutting, *checker_);
       std::mt19937_64 shortcut_rng(options_.seed ^ 0x5bd1e995u);
       result.length = shortcut_path(scene_.space, &local_, &fine, certify ? &certifier_ : nullptr,

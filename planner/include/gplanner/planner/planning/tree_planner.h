@@ -11,9 +11,13 @@
 // first collision. A connection that reaches its new node joins the trees: the path runs
 // from the start through both trees to the goal.
 //
-// The path is then certified free (CertifiedMotions; or re-checked at a finer
-// resolution with PlanOptions::certify_path off); a tree edge that fails loses its
-// subtree, and the rounds go on. The path is shortcut as the roadmap planner's is.
+// The path is then shortcut (path_shortcutting, at the fine resolution) and the shortened
+// path certified free whole (CertifiedMotions): the tree path's detours need no
+// certificate of their own. Where that fails, the tree path's edges are certified (in
+// the same call where calls cost): a tree edge that fails loses its subtree, and the
+// rounds go on; where they pass, the tree path is shortcut with certified shortcuts, as
+// the roadmap planner's path is. (With PlanOptions::certify_path off, the tree path is
+// re-checked at a finer resolution, then shortcut.)
 //
 // Where lazy PRM must cover the whole space with milestones before a path shows, the
 // trees grow from the start and the goal into the free space about them, which is what
@@ -106,6 +110,20 @@ class TreePlanner {
   std::vector<float> path_through(std::int32_t s, std::int32_t g, std::vector<int>* edge_tree,
                                   std::vector<std::int32_t>* edge_child) const;
   void remove_subtree(Tree* tree, std::int32_t node) const;
+  // What became of a path through both trees.
+  enum class PathOutcome {
+    kShortened,  // *found: the path shortcut and certified whole
+    kFound,      // *found: the path itself, certified (or re-checked finely), to shortcut
+    kRefused,    // an edge failed: its subtree removed
+    kStopped,    // the stop came first
+  };
+  // Checks the path (edges: their tree and child node): with certification and
+  // shortcutting, shortcut first and the shortened path certified whole, the path's own
+  // edges only where that fails (in the same call where calls cost); otherwise the
+  // path's edges not yet certified.
+  PathOutcome finish_path(const std::vector<float>& path, const std::vector<int>& edge_tree,
+                          const std::vector<std::int32_t>& edge_child, LocalPlanner* fine,
+                          bool certify, PlanResult* result, std::vector<float>* found);
   const char* why_stop() const;
   double elapsed() const;
 

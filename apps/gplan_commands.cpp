@@ -16,6 +16,7 @@
 #include "gplanner/common/gpu_device.h"
 #include "gplanner/version.h"
 #include "plan_command.h"
+#include "view_command.h"
 
 namespace gplan {
 
@@ -36,25 +37,31 @@ const char* const kUsage =
     "      on the GPU (the planners answer small calls on the host); --out\n"
     "      writes each configuration's values and its\n"
     "      verdict (1 collision, 0 free), one per line; --json ends with a JSON summary\n"
-    "  gplan plan SCENE [--planner lazyprm|prm] [--backend gpu|cpu|fcl] [--seed S]\n"
-    "                   [--time-limit SECONDS] [--milestones N] [--traversal T] [--threads T]\n"
-    "                   [--load-roadmap FILE] [--save-roadmap FILE] [--out FILE]\n"
-    "                   [--picture FILE.svg] [--edges sampled|certified]\n"
-    "                   [--path-check certified|fine] [--json]\n"
-    "      plan from the scene's start to its goal (default lazyprm on the gpu backend;\n"
+    "  gplan plan SCENE [--planner auto|rrtconnect|lazyprm|prm] [--backend gpu|cpu|fcl]\n"
+    "                   [--seed S] [--time-limit SECONDS] [--milestones N] [--traversal T]\n"
+    "                   [--threads T]"
+    " [--load-roadmap FILE] [--save-roadmap FILE] [--out FILE]\n"
+    "                   [--picture FILE.svg] [--html FILE.html [--html-roadmap]]\n"
+    "                   [--edges sampled|certified] [--path-check certified|fine] [--json]\n"
+    "      plan from the scene's start to its goal (default auto: batched RRT-Connect for\n"
+    "      robots with joints, lazy PRM for rigid bodies and roadmaps; the gpu backend;\n"
     "      seed, time limit and first-round milestones default to the scene's planner\n"
     "      settings) and print the time per stage; --out writes the path (YAML),\n"
-    "      --picture a drawing of it (SVG); exit 4\n"
+    "      --picture a drawing of it (SVG), --html a 3-D view of it to open in a browser\n"
+    "      (one file, offline); exit 4\n"
     "      when no path is found within the time limit. The path returned is certified\n"
     "      free along every motion (docs/design.md, \"Certified motions\"); --path-check\n"
     "      fine re-checks it at samples instead; --edges certified certifies every edge\n"
     "      the planner uses, not only the path's\n"
+    "  gplan view PATHFILE [--scene SCENE] --html FILE.html\n"
+    "      the 3-D view of a path file (plan --out, a gplan-bench failed_paths/ entry) in\n"
+    "      its scene (the file's scene: key, or --scene)\n"
     "  gplan bench CONFIG ...\n"
     "      deprecated alias of gplan-bench CONFIG ... (the benchmark program installed\n"
     "      beside gplan; gplan-bench --help), to be removed in 0.4\n"
     "  gplan info\n"
     "      gplanner's version, how it was built and which GPU it can use\n"
-    "Output files (--out, --picture, --save-roadmap) are checked before any work: a\n"
+    "Output files (--out, --picture, --html, --save-roadmap) are checked before any work: a\n"
     "regular file or a new one in a writable folder, never a folder or device, never a\n"
     "file the run reads or another output; a symbolic link is written through to its\n"
     "target. Each is written whole or not at all. Exit codes: 0 done, 1 internal error,\n"
@@ -135,8 +142,10 @@ int run_command(int argc, char** argv) {
   if (command == "check") return run_check(argc, argv);
   if (command == "plan") return run_plan(argc, argv);
   if (command == "bench") return run_bench_alias(argc, argv);
+  if (command == "view") return run_view(argc, argv);
   if (command == "info") return run_info();
-  throw UsageError("unknown command '" + excerpt(command) + "'; use check, plan, bench or info");
+  throw UsageError("unknown command '" + excerpt(command) +
+                   "'; use check, plan, view, bench or info");
 }
 
 }  // namespace gplan

@@ -18,6 +18,7 @@
 #include "gplanner/planner/output/output_paths.h"
 #include "gplanner/planner/output/path_file.h"
 #include "gplanner/planner/output/path_picture.h"
+#include "gplanner/planner/output/path_viewer.h"
 #include "gplanner/planner/output/roadmap_file.h"
 #include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/planning/neighbor_finder.h"
@@ -51,7 +52,8 @@ struct PlanRequest {
   std::optional<unsigned long long> seed;
   std::optional<double> time_limit_s;
   std::optional<std::size_t> milestones;
-  std::string out, save, picture;
+  std::string out, save, picture, html;
+  bool html_roadmap = false;                 // the roadmap drawn in --html
   std::optional<std::string> load;           // --load-roadmap FILE
   std::vector<gplanner::NamedFile> outputs;  // the output options given
   bool json = false;
@@ -61,8 +63,8 @@ PlanRequest read_plan_request(int argc, char** argv) {
   const CommandLine args(
       argc, argv, 2,
       {"planner", "backend", "seed", "time-limit", "milestones", "traversal", "threads",
-       "load-roadmap", "save-roadmap", "out", "picture", "edges", "path-check"},
-      {"json"});
+       "load-roadmap", "save-roadmap", "out", "picture", "html", "edges", "path-check"},
+      {"json", "html-roadmap"});
   if (args.positionals().size() != 1)
     throw UsageError("gplan plan takes one scene file, not " +
                      std::to_string(args.positionals().size()) + "; give exactly one");
@@ -103,7 +105,17 @@ PlanRequest read_plan_request(int argc, char** argv) {
   r.save = args.text("save-roadmap", "");
   if (args.has("load-roadmap")) r.load = args.text("load-roadmap", "");
   r.picture = args.text("picture", "");
-  for (const char* option : {"out", "picture", "save-roadmap"}) {
+  r.html = args.text("html", "");
+  r.html_roadmap = args.flag("html-roadmap");
+  if (r.html_roadmap && !args.has("html"))
+    throw UsageError("--html-roadmap draws in --html FILE; give it");
+  if (r.html_roadmap && !gplanner::keeps_roadmap(r.planner))
+    throw UsageError("--html-roadmap: --planner rrtconnect keeps no roadmap; use lazyprm or prm");
+  if (args.has("html") && !gplanner::path_viewer_available())
+    throw UsageError(
+        "--html: this gplan was built without the viewer (no npm at build time); "
+        "build with -DGPLANNER_VIEWER=ON where npm can reach its registry");
+  for (const char* option : {"out", "picture", "html", "save-roadmap"}) {
     if (args.has(option)) r.outputs.push_back({std::string("--") + option, args.text(option, "")});
   }
   if (args.has("seed")) r.seed = args.count("seed", 0, 0, ~0ULL);
@@ -224,7 +236,8 @@ int run_plan(int argc, char** argv) {
   const bool terminal = isatty(STDERR_FILENO);
   options.progress = progress_printer(terminal);
 
-  const bool with_roadmap = request.load || !request.save.empty() || request.milestones;
+  const bool with_roadmap =
+      request.load || !request.save.empty() || request.milestones || request.html_roadmap;
   gplanner::ChosenPlanner planner(scene, checker.get(), neighbors.get(), request.planner,
                                   with_roadmap, options);
   if (request.load)
@@ -254,6 +267,20 @@ int run_plan(int argc, char** argv) {
                                 checker->backend());
     });
     write("--picture", [&] { gplanner::write_path_picture(request.picture, scene, result.path); });
+    write("--html", [&] {
+      std::ostringstream summary;
+      summary << gplanner::planner_name(planner.used()) << " on the " << checker->backend()
+              << " backend, seed " << options.seed << ": "
+              << result.path.size() / scene.space.width() << " waypoints, length "
+              << std::setprecision(4) << result.length << ", planned in " << std::setprecision(3)
+              << result.times.total << " s";
+      std::string notice;
+      const gplanner::RoadmapPlanner* roadmap_planner = planner.roadmap_planner();
+      gplanner::write_path_viewer(
+          request.html, scene, result.path, summary.str(), &notice,
+          request.html_roadmap && roadmap_planner ? &roadmap_planner->roadmap() : nullptr);
+      if (!notice.empty()) std::cerr << "notice: " << gplanner::terminal_text(notice) << "\n";
+    });
   }
   if (interrupted()) return report_interruption(written, unwritten);
 

@@ -7,7 +7,10 @@ cd "$(dirname "$0")/.."
 
 packages=(g++ cmake make libeigen3-dev libyaml-cpp-dev liburdfdom-dev libtinyxml2-dev
           libassimp-dev libfcl-dev libccd-dev libgtest-dev libompl-dev ompl-demos nlohmann-json3-dev
-          python3-matplotlib python3-dev python3-numpy pybind11-dev python3-pytest)
+          python3-matplotlib python3-dev python3-numpy pybind11-dev python3-pytest chromium)
+# The viewer (gplan plan --html) is bundled with npm at build time: Debian's where the
+# machine has no Node.js of its own.
+command -v npm >/dev/null || packages+=(nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

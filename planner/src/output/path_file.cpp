@@ -5,7 +5,10 @@
 
 #include "gplanner/planner/output/atomic_file.h"
 #include "gplanner/planner/output/text_escaping.h"
+#include "gplanner/planner/scene/input_file.h"
 #include "gplanner/planner/scene/scene.h"
+#include "gplanner/planner/scene/yaml_reader.h"
+#include "gplanner/planner/scene/yaml_structure.h"
 
 namespace gplanner {
 
@@ -75,6 +78,64 @@ void write_path_file(const std::string& path, const Scene& scene, const PlanResu
       if (any) out << "}\n";
     }
   });
+}
+
+namespace {
+
+// A path file is no larger than this (a million waypoints of a robot with tens of joints).
+constexpr InputFileKind kPathFile{"path file", 1024 * kMiB};
+
+YAML::Node load_path_file(const std::string& file, const YamlReader& in) {
+  const YAML::Node root = load_checked_yaml(file, kPathFile, "");
+  if (!root.IsMap() || !root["waypoints"] || !root["scene"])
+    in.fail(root, "",
+            "not a path file (gplan plan --out writes them): no scene and waypoints keys");
+  return root;
+}
+
+}  // namespace
+
+std::string path_file_scene(const std::string& file) {
+  const YamlReader in(file);
+  const YAML::Node root = load_path_file(file, in);
+  return in.text(root["scene"], "scene");
+}
+
+std::vector<float> read_path_file(const std::string& file, const Scene& scene) {
+  const YamlReader in(file);
+  const YAML::Node root = load_path_file(file, in);
+  const ConfigurationSpace& space = scene.space;
+  const int width = space.width();
+  const YAML::Node entries = in.required(root, "", "entries");
+  if (!entries.IsSequence() || entries.size() != static_cast<std::size_t>(width)) {
+    in.fail(entries, "entries",
+            "expected the " + std::to_string(width) + " configuration entries of scene '" +
+                scene.name + "', found " +
+                std::to_string(entries.IsSequence() ? entries.size() : 0) +
+                "; give the scene the path was planned in (--scene)");
+  }
+  for (int i = 0; i < width; ++i) {
+    const std::string name = in.text(entries[i], "entries[" + std::to_string(i) + "]");
+    if (name != space.entry_name(scene.robot, i)) {
+      in.fail(entries[i], "entries[" + std::to_string(i) + "]",
+              "'" + name + "' where scene '" + scene.name + "' has '" +
+                  space.entry_name(scene.robot, i) +
+                  "'; give the scene the path was planned in (--scene)");
+    }
+  }
+  const YAML::Node waypoints = root["waypoints"];
+  if (!waypoints.IsSequence() || waypoints.size() < 2)
+    in.fail(waypoints, "waypoints", "expected a list of at least 2 waypoints");
+  std::vector<float> path(waypoints.size() * width);
+  std::vector<double> values;
+  for (std::size_t w = 0; w < waypoints.size(); ++w) {
+    const std::string key = "waypoints[" + std::to_string(w) + "]";
+    if (!waypoints[w].IsMap()) in.fail(waypoints[w], key, "expected a map with a configuration");
+    values = in.numbers(in.required(waypoints[w], key, "configuration"), key + ".configuration",
+                        static_cast<std::size_t>(width));
+    space.from_file_values(values.data(), &path[w * width]);
+  }
+  return path;
 }
 
 }  // namespace gplanner

@@ -1,0 +1,11 @@
+#pragma once
+
+namespace gplan {
+
+// gplan view PATHFILE [--scene SCENE] --html FILE
+// The 3-D viewer of a path file (`gplan plan --out`, or a gplan-bench failed_paths/
+// entry) in its scene: the file's `scene:` key (as written, else beside the path file),
+// or --scene. Exit 0 when written, 2 on bad input.
+int run_view(int argc, char** argv);
+
+}  // namespace gplan

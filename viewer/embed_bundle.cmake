@@ -1,0 +1,21 @@
+# cmake -DBUNDLE=viewer.bundle.js -DOUT=viewer_bundle.cpp -P embed_bundle.cmake: the
+# bundle as the C++ string kViewerBundle, in raw-string chunks. Refuses a bundle that
+# could end or confuse the <script> element it goes into.
+file(READ ${BUNDLE} text)
+foreach(bad "</script" "</SCRIPT" "<!--" ")gpjs\"")
+  string(FIND "${text}" "${bad}" at)
+  if(NOT at EQUAL -1)
+    message(FATAL_ERROR "${BUNDLE} holds '${bad}' at ${at}: it cannot go into a <script> element as it is")
+  endif()
+endforeach()
+string(LENGTH "${text}" length)
+set(out "// Generated from ${BUNDLE} by viewer/embed_bundle.cmake.\n#include \"viewer_bundle.h\"\nnamespace gplanner {\nextern const char kViewerBundle[] =\n")
+set(chunk 16000)
+set(at 0)
+while(at LESS length)
+  string(SUBSTRING "${text}" ${at} ${chunk} part)
+  string(APPEND out "R\"gpjs(${part})gpjs\"\n")
+  math(EXPR at "${at} + ${chunk}")
+endwhile()
+string(APPEND out ";\n}  // namespace gplanner\n")
+file(WRITE ${OUT} "${out}")

@@ -19,7 +19,8 @@ namespace {
 // Frames of the animation besides the waypoints, spread by the segments' lengths.
 constexpr int kFrames = 300;
 
-// `text` as JSON text safe inside a <script> element: "</" cannot end it.
+// JSON text safe inside a <script> element: every '<' (only ever inside strings) written
+// as \u003c, so that nothing in it can end or comment out the element.
 std::string script_safe(const std::string& json) {
   std::string out;
   out.reserve(json.size());

@@ -23,6 +23,7 @@
 #include "gplanner/planner/checkers/gpu_checker.h"
 #include "gplanner/planner/output/atomic_file.h"
 #include "gplanner/planner/output/output_paths.h"
+#include "gplanner/planner/output/path_viewer.h"
 #include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/planning/timed_batch_size.h"
 #include "gplanner/planner/scene/scene.h"
@@ -111,12 +112,13 @@ struct CheckRequest {
   bool has_out = false;  // --out FILE given
   std::string out;
   bool pairs = false, json = false;
+  std::string html;  // --html FILE: the first colliding rows in the 3-D viewer
 };
 
 CheckRequest read_check_request(int argc, char** argv) {
   const CommandLine args(argc, argv, 2,
                          {"n", "seed", "backend", "traversal", "compare", "threads",
-                          "memory-cap-mb", "small-batch", "out", "repeat"},
+                          "memory-cap-mb", "small-batch", "out", "repeat", "html"},
                          {"json", "pairs"});
   if (args.positionals().size() != 1)
     throw UsageError("gplan check takes one scene file, not " +
@@ -156,6 +158,12 @@ CheckRequest read_check_request(int argc, char** argv) {
   r.json = args.flag("json");
   if (r.pairs && !r.has_out)
     throw UsageError("--pairs adds the colliding pair to each row of --out FILE; add --out");
+  r.html = args.text("html", "");
+  if (args.has("html") && r.html.empty()) throw UsageError("--html: give a file name");
+  if (args.has("html") && !gplanner::path_viewer_available())
+    throw UsageError(
+        "--html: this gplan was built without the viewer (no npm at build time); "
+        "build with -DGPLANNER_VIEWER=ON where npm can reach its registry");
   return r;
 }
 
@@ -227,6 +235,57 @@ bool colliding_pairs(const gplanner::Scene& scene, const std::vector<float>& q,
   return true;
 }
 
+// --html: the first kViewedRows colliding rows in the 3-D viewer, each with the pair FCL
+// finds colliding (CollisionReporter) drawn red and named; where none collides, the first
+// row. False when interrupted.
+bool write_colliding_rows_viewer(const std::string& html, const gplanner::Scene& scene,
+                                 const std::vector<float>& q,
+                                 const std::vector<std::uint8_t>& verdicts) {
+  constexpr std::size_t kViewedRows = 50;
+  const std::size_t width = scene.space.width();
+  const gplanner::RobotModel& robot = scene.robot;
+  auto link_index = [&](const std::string& name) {
+    for (std::size_t l = 0; l < robot.links.size(); ++l)
+      if (robot.links[l].name == name) return static_cast<int>(l);
+    return -1;
+  };
+  gplanner::CollisionReporter reporter(scene);
+  std::vector<float> rows;
+  std::vector<gplanner::ViewedRow> viewed;
+  std::size_t colliding = 0;
+  for (std::size_t i = 0; i < verdicts.size(); ++i) colliding += verdicts[i];
+  for (std::size_t i = 0; i < verdicts.size() && viewed.size() < kViewedRows; ++i) {
+    if (!verdicts[i]) continue;
+    if (interrupted()) return false;
+    const gplanner::CollisionPair pair = reporter.first_pair(&q[i * width]);
+    gplanner::ViewedRow row;
+    row.label = "row " + std::to_string(i) + ", " + pair.describe();
+    row.link = link_index(pair.a_key);
+    unsigned obstacle = 0;
+    if (std::sscanf(pair.b_key.c_str(), "obstacles[%u]", &obstacle) == 1) {
+      row.obstacle = static_cast<int>(obstacle);
+    } else {
+      row.other_link = link_index(pair.b_key);
+    }
+    rows.insert(rows.end(), &q[i * width], &q[(i + 1) * width]);
+    viewed.push_back(row);
+  }
+  if (viewed.empty()) {
+    rows.assign(q.begin(), q.begin() + width);
+    viewed.push_back(
+        {"row 0: free, as all " + std::to_string(verdicts.size()) + " rows are", -1, -1, -1});
+  }
+  std::string notice;
+  gplanner::write_rows_viewer(html, scene, rows, viewed,
+                              std::to_string(colliding) + " of " + std::to_string(verdicts.size()) +
+                                  " rows collide; the first " +
+                                  std::to_string(std::min(colliding, kViewedRows)) +
+                                  " shown, what collides in red",
+                              &notice);
+  if (!notice.empty()) std::cerr << "notice: " << gplanner::terminal_text(notice) << "\n";
+  return true;
+}
+
 // --out: each configuration's values as the scene file gives them (world or plane
 // positions, not relative to the scene frame), summed in double, then its verdict and
 // (--pairs) its pair; far from the origin (the frame moved) with all of a double's
@@ -262,11 +321,12 @@ int run_check(int argc, char** argv) {
   // (gplanner::check_output_paths): against the scene file, then every file it loads.
   std::vector<gplanner::NamedFile> outputs;
   if (request.has_out) outputs.push_back({"--out", request.out});
+  if (!request.html.empty()) outputs.push_back({"--html", request.html});
   std::vector<gplanner::NamedFile> inputs{{"the scene file", request.scene_file}};
   gplanner::check_output_paths(outputs, inputs);
-  const std::vector<std::string> unwritten = outputs.empty()
-                                                 ? std::vector<std::string>{}
-                                                 : std::vector<std::string>{"--out " + request.out};
+  std::vector<std::string> unwritten;
+  for (const gplanner::NamedFile& output : outputs)
+    unwritten.push_back(output.name + " " + output.path);
 
   const auto load_start = Clock::now();
   const gplanner::Scene scene = gplanner::load_scene(request.scene_file);
@@ -324,7 +384,16 @@ int run_check(int argc, char** argv) {
     write_verdict_file(request.out, scene, q, verdicts, pair_columns);
     report.written = request.out;
   }
+  if (!request.html.empty()) {
+    if (!write_colliding_rows_viewer(request.html, scene, q, verdicts))
+      return report_interruption(report.written.empty()
+                                     ? std::vector<std::string>{}
+                                     : std::vector<std::string>{"--out " + report.written},
+                                 {"--html " + request.html});
+  }
   std::cout << report.text();
+  if (!request.html.empty())
+    std::cout << "wrote       --html " << gplanner::terminal_text(request.html) << "\n";
   if (request.json) std::cout << json_line(report.json());
   // A comparison that finds the band broken fails the run, so scripts notice.
   if (report.band_broken()) {

@@ -25,7 +25,7 @@ const char* const kUsage =
     "  gplan check SCENE [--n N] [--seed S] [--backend gpu|cpu|fcl]\n"
     "                    [--traversal basic|packet|balanced] [--compare BACKEND]\n"
     "                    [--threads T] [--memory-cap-mb M] [--small-batch N] [--repeat R]\n"
-    "                    [--out FILE [--pairs]] [--json]\n"
+    "                    [--out FILE [--pairs]] [--html FILE.html] [--json]\n"
     "      sample N configurations (default 10000, seed 1) within the scene's bounds and\n"
     "      joint limits and check them (default backend fcl; gpu falls back to cpu where\n"
     "      there is no GPU); --compare runs a second backend on the same configurations\n"

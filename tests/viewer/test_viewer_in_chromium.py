@@ -155,3 +155,21 @@ def test_view_of_a_path_file(tmp_path):
     assert wrong.returncode == 2
     assert "entries" in wrong.stderr and "--scene" in wrong.stderr
     assert not (tmp_path / "x.html").exists()
+
+
+def test_colliding_rows_with_their_pair_in_red(tmp_path):
+    """gplan check --html: the colliding rows, each with the pair FCL names drawn red."""
+    html = tmp_path / "rows.html"
+    run = subprocess.run([GPLAN, "check", str(SOURCE / "scenes" / "pr2_base_arm.yaml"), "--n", "300",
+                          "--backend", "cpu", "--html", str(html)],
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr
+    text = html.read_text()
+    assert '"rows":[{"label":"row ' in text
+    dom, stderr = chromium(tmp_path, html.as_uri() + "?t=0", "--dump-dom")
+    assert 'data-status="drawn"' in dom, dom[:300]
+    assert console_errors(stderr) == [], console_errors(stderr)
+    assert "link '" in dom  # the first row's pair, named in the panel
+    picture = screenshot(tmp_path, html, 0)
+    red = (picture[:, :, 0] > 0.7) & (picture[:, :, 1] < 0.35) & (picture[:, :, 2] < 0.35)
+    assert red.mean() > 0.0005, f"only {red.mean():.5f} of the picture is red"

@@ -11,6 +11,8 @@
 //   frames: [[12 numbers per link: the 3x3 rotation by columns, then the translation]]
 //   waypoints: [frame index of each waypoint]
 //   roadmap (on request): {milestones, points: [x y z ...], valid: [i j ...], unknown: [i j ...]}
+//   rows (gplan check --html): per frame {label, link, obstacle, other_link}: configurations
+//     shown one at a time, what collides there drawn red
 //   notice: text, or ""
 // URL parameters: ?t=0..1 shows that point of the path, paused (for tests and links).
 // Where the page is drawn, document.body gets data-status="drawn"; an error sets
@@ -99,14 +101,27 @@ function main() {
     color: 0x9aa0a6, roughness: 0.9, transparent: true, opacity: 0.55, side: THREE.DoubleSide,
     depthWrite: false,
   });
-  for (const obstacle of data.obstacles) scene.add(new THREE.Mesh(geometries[obstacle.mesh], obstacleMaterial));
+  const obstacles = data.obstacles.map((obstacle) => {
+    const mesh = new THREE.Mesh(geometries[obstacle.mesh], obstacleMaterial);
+    scene.add(mesh);
+    return mesh;
+  });
+  const hitMaterial = new THREE.MeshStandardMaterial({ color: 0xe02020, roughness: 0.6 });
+  const hitObstacleMaterial = new THREE.MeshStandardMaterial({
+    color: 0xe02020, transparent: true, opacity: 0.6, side: THREE.DoubleSide, depthWrite: false,
+  });
 
   const last = data.frames.length - 1;
   const ghost = (color) => new THREE.MeshStandardMaterial({
     color, transparent: true, opacity: 0.3, depthWrite: false, side: THREE.DoubleSide,
   });
-  scene.add(robotAt(data, geometries, ghost(0x22aa44), 0));
-  scene.add(robotAt(data, geometries, ghost(0xdd3333), last));
+  const rows = data.rows || null;
+  if (!rows) {  // a path: its start and goal
+    scene.add(robotAt(data, geometries, ghost(0x22aa44), 0));
+    scene.add(robotAt(data, geometries, ghost(0xdd3333), last));
+  } else {
+    legend.textContent = "red: what collides; drag to orbit, wheel to zoom";
+  }
   const robotMaterial = new THREE.MeshStandardMaterial({ color: 0x3366cc, roughness: 0.5, metalness: 0.1 });
   const robot = robotAt(data, geometries, robotMaterial, 0);
   scene.add(robot);
@@ -114,7 +129,7 @@ function main() {
   // The root's way along the path.
   const way = [];
   for (const frame of data.frames) way.push(new THREE.Vector3(frame[9], frame[10], frame[11]));
-  if (way.length > 1) {
+  if (way.length > 1 && !rows) {
     scene.add(new THREE.Line(new THREE.BufferGeometry().setFromPoints(way),
                              new THREE.LineBasicMaterial({ color: 0xcc6600 })));
   }
@@ -157,17 +172,26 @@ function main() {
 
   const show = (frame) => {
     frame = Math.min(last, Math.max(0, Math.round(frame)));
+    const row = rows ? rows[frame] : null;
     robot.children.forEach((mesh, i) => {
       const l = robot.userData.links[i];
       setPose(mesh, data.frames[frame].slice(12 * l, 12 * l + 12));
+      mesh.material = row && (l === row.link || l === row.other_link) ? hitMaterial : robotMaterial;
+    });
+    obstacles.forEach((mesh, o) => {
+      mesh.material = row && o === row.obstacle ? hitObstacleMaterial : obstacleMaterial;
     });
     slider.value = frame;
-    const waypoint = data.waypoints.filter((f) => f <= frame).length;
-    label.textContent = " waypoint " + waypoint + " of " + data.waypoints.length;
+    if (row) {
+      label.textContent = " " + (frame + 1) + " of " + rows.length + ": " + row.label;
+    } else {
+      const waypoint = data.waypoints.filter((f) => f <= frame).length;
+      label.textContent = " waypoint " + waypoint + " of " + data.waypoints.length;
+    }
   };
   robot.userData.links = data.links.map((link, l) => (link.mesh < 0 ? -1 : l)).filter((l) => l >= 0);
 
-  let playing = !params.has("t");
+  let playing = !params.has("t") && !rows;
   let position = params.has("t") ? Number(params.get("t")) * last : 0;
   if (!Number.isFinite(position)) position = 0;
   play.textContent = playing ? "Pause" : "Play";

@@ -65,8 +65,15 @@ TriangleMesh box_mesh(const TriangleMesh& mesh) {
 
 bool path_viewer_available() { return kViewerBundle[0] != '\0'; }
 
-void write_path_viewer(const std::string& file, const Scene& scene, const std::vector<float>& path,
-                       const std::string& summary, std::string* notice, const Roadmap* roadmap) {
+namespace {
+
+// The page: `frames` (shape [*, width]) are the robot's configurations in order;
+// waypoint_frames the frames that are waypoints (the slider names them); viewed (empty, or
+// one per frame) what to highlight and say per frame; roadmap drawn where given.
+void write_viewer(const std::string& file, const Scene& scene, const std::vector<float>& frames,
+                  const std::vector<std::size_t>& waypoint_frames,
+                  const std::vector<ViewedRow>& viewed, const std::string& summary,
+                  std::string* notice, const Roadmap* roadmap) {
   if (!path_viewer_available())
     throw std::runtime_error(
         "this gplan was built without the viewer (no npm at build time); build with "
@@ -74,7 +81,6 @@ void write_path_viewer(const std::string& file, const Scene& scene, const std::v
   const ConfigurationSpace& space = scene.space;
   const RobotModel& robot = scene.robot;
   const int width = space.width();
-  const std::size_t m = path.size() / width;
   notice->clear();
   std::size_t triangles = 0;
   for (const Link& link : robot.links) triangles += link.collision.triangle_count();
@@ -83,25 +89,6 @@ void write_path_viewer(const std::string& file, const Scene& scene, const std::v
   if (boxes) {
     *notice = std::to_string(triangles) + " triangles are more than the viewer draws (" +
               std::to_string(kViewerMaxTriangles) + "): each obstacle is drawn as its bounding box";
-  }
-  // Frames: every waypoint, and frames between them by the segments' lengths.
-  const ConfigurationMetric metric = make_metric(space, scene.planner);
-  std::vector<double> lengths(m > 0 ? m - 1 : 0);
-  double total = 0;
-  for (std::size_t i = 0; i + 1 < m; ++i)
-    total += lengths[i] = distance(metric, &path[i * width], &path[(i + 1) * width]);
-  std::vector<float> frames;
-  std::vector<std::size_t> waypoint_frames;
-  std::vector<float> q(width);
-  for (std::size_t i = 0; i < m; ++i) {
-    waypoint_frames.push_back(frames.size() / width);
-    frames.insert(frames.end(), &path[i * width], &path[(i + 1) * width]);
-    if (i + 1 == m) break;
-    const int between = total > 0 ? static_cast<int>(std::lround(kFrames * lengths[i] / total)) : 0;
-    for (int j = 1; j < between; ++j) {
-      space.interpolate(&path[i * width], &path[(i + 1) * width], double(j) / between, q.data());
-      frames.insert(frames.end(), q.begin(), q.end());
-    }
   }
   write_file_atomically(file, [&](std::ostream& out) {
     out << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
@@ -163,6 +150,15 @@ void write_path_viewer(const std::string& file, const Scene& scene, const std::v
     for (std::size_t i = 0; i < waypoint_frames.size(); ++i)
       json << (i ? "," : "") << waypoint_frames[i];
     json << "]";
+    if (!viewed.empty()) {
+      json << ",\"rows\":[";
+      for (std::size_t f = 0; f < viewed.size(); ++f) {
+        const ViewedRow& v = viewed[f];
+        json << (f ? "," : "") << "{\"label\":" << json_string(v.label) << ",\"link\":" << v.link
+             << ",\"obstacle\":" << v.obstacle << ",\"other_link\":" << v.other_link << "}";
+      }
+      json << "]";
+    }
     if (roadmap != nullptr) {
       // Each milestone where the last link is (its origin), the root for a rigid body.
       const std::size_t n = std::min(roadmap->vertex_count(), kViewerMaxMilestones);
@@ -189,6 +185,43 @@ void write_path_viewer(const std::string& file, const Scene& scene, const std::v
     out << script_safe(json.str()) << "</script>\n<script>" << kViewerBundle
         << "</script>\n</body></html>\n";
   });
+}
+
+}  // namespace
+
+void write_path_viewer(const std::string& file, const Scene& scene, const std::vector<float>& path,
+                       const std::string& summary, std::string* notice, const Roadmap* roadmap) {
+  const ConfigurationSpace& space = scene.space;
+  const int width = space.width();
+  const std::size_t m = path.size() / width;
+  // Frames: every waypoint, and frames between them by the segments' lengths.
+  const ConfigurationMetric metric = make_metric(space, scene.planner);
+  std::vector<double> lengths(m > 0 ? m - 1 : 0);
+  double total = 0;
+  for (std::size_t i = 0; i + 1 < m; ++i)
+    total += lengths[i] = distance(metric, &path[i * width], &path[(i + 1) * width]);
+  std::vector<float> frames;
+  std::vector<std::size_t> waypoint_frames;
+  std::vector<float> q(width);
+  for (std::size_t i = 0; i < m; ++i) {
+    waypoint_frames.push_back(frames.size() / width);
+    frames.insert(frames.end(), &path[i * width], &path[(i + 1) * width]);
+    if (i + 1 == m) break;
+    const int between = total > 0 ? static_cast<int>(std::lround(kFrames * lengths[i] / total)) : 0;
+    for (int j = 1; j < between; ++j) {
+      space.interpolate(&path[i * width], &path[(i + 1) * width], double(j) / between, q.data());
+      frames.insert(frames.end(), q.begin(), q.end());
+    }
+  }
+  write_viewer(file, scene, frames, waypoint_frames, {}, summary, notice, roadmap);
+}
+
+void write_rows_viewer(const std::string& file, const Scene& scene, const std::vector<float>& rows,
+                       const std::vector<ViewedRow>& viewed, const std::string& summary,
+                       std::string* notice) {
+  std::vector<std::size_t> waypoint_frames(viewed.size());
+  for (std::size_t i = 0; i < viewed.size(); ++i) waypoint_frames[i] = i;
+  write_viewer(file, scene, rows, waypoint_frames, viewed, summary, notice, nullptr);
 }
 
 }  // namespace gplanner

@@ -38,4 +38,18 @@ void write_path_viewer(const std::string& file, const Scene& scene, const std::v
                        const std::string& summary, std::string* notice,
                        const Roadmap* roadmap = nullptr);
 
+// A configuration shown with what collides there highlighted (`gplan check --html`).
+struct ViewedRow {
+  std::string label;    // what the panel says of it (its row number and pair)
+  int link = -1;        // the colliding link (robot.links index), or -1
+  int obstacle = -1;    // the obstacle it meets (scene.obstacles index), or -1
+  int other_link = -1;  // or the link it meets, or -1
+};
+
+// Writes the viewer of `rows` (shape [rows.size(), width]), a frame each (the slider steps
+// through them, no animation), each row's link and obstacle (or second link) drawn red.
+void write_rows_viewer(const std::string& file, const Scene& scene, const std::vector<float>& rows,
+                       const std::vector<ViewedRow>& viewed, const std::string& summary,
+                       std::string* notice);
+
 }  // namespace gplanner

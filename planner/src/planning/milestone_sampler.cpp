@@ -7,15 +7,12 @@
 
 #include "gplanner/planner/planning/plan_result.h"
 #include "gplanner/planner/scene/planner_settings.h"
+#include "stage_timer.h"
 
 namespace gplanner {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // q turned by a Gaussian rotation vector of standard deviation `sigma` per axis (w x y z
 // in and out, q_out = q_in * exp(omega)).

@@ -9,47 +9,12 @@
 #include "gplanner/planner/planning/graph_search.h"
 #include "gplanner/planner/planning/path_shortcutting.h"
 #include "gplanner/planner/scene/scene.h"
+#include "stage_timer.h"
 
 namespace gplanner {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// The GPU calls a plan's checker and k-NN have made so far.
-std::size_t gpu_calls_of(const CollisionChecker& checker, const NeighborFinder& neighbors) {
-  return checker.device_calls() + neighbors.device_calls();
-}
-
-// Adds the time from construction to destruction to `*sink`, and where `calls` is given
-// the GPU calls `checker` and `neighbors` made meanwhile to `*calls`.
-class StageTimer {
- public:
-  explicit StageTimer(double* sink) : sink_(sink), start_(Clock::now()) {}
-  StageTimer(double* sink, std::size_t* calls, const CollisionChecker& checker,
-             const NeighborFinder& neighbors)
-      : sink_(sink),
-        calls_(calls),
-        checker_(&checker),
-        neighbors_(&neighbors),
-        calls_before_(gpu_calls_of(checker, neighbors)),
-        start_(Clock::now()) {}
-  ~StageTimer() {
-    *sink_ += seconds_since(start_);
-    if (calls_) *calls_ += gpu_calls_of(*checker_, *neighbors_) - calls_before_;
-  }
-
- private:
-  double* sink_;
-  std::size_t* calls_ = nullptr;
-  const CollisionChecker* checker_ = nullptr;
-  const NeighborFinder* neighbors_ = nullptr;
-  std::size_t calls_before_ = 0;
-  Clock::time_point start_;
-};
 
 }  // namespace
 
@@ -108,7 +73,7 @@ bool RoadmapPlanner::check_loaded_milestones(PlanResult* result) {
   while (loaded_unchecked_ > 0) {
     if (stop_()) return false;
     StageTimer timer(&result->times.state_checks, &result->gpu_calls.state_checks, *checker_,
-                     *neighbors_);
+                     neighbors_);
     const std::size_t count = std::min<std::size_t>(loaded_unchecked_, sampling_batch_.next());
     const std::size_t first = loaded_unchecked_ - count;
     colliding.assign(count, 1);
@@ -185,7 +150,7 @@ bool RoadmapPlanner::connect(PlanResult* result) {
   // seconds past the limit). A finder that searches all points in every call (the GPU's)
   // gets them in one call, made only where the last call's time, scaled as the square of
   // the points, says it ends within the time limit.
-  StageTimer timer(&result->times.knn, &result->gpu_calls.knn, *checker_, *neighbors_);
+  StageTimer timer(&result->times.knn, &result->gpu_calls.knn, *checker_, neighbors_);
   const std::size_t n = roadmap_.vertex_count();
   const int k = options_.neighbors;
   const ConfigurationMetric& metric = local_.metric();
@@ -341,7 +306,7 @@ bool RoadmapPlanner::check_edge_motions(MotionChecker* motions,
 void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanResult* result) {
   if (edges.empty()) return;
   StageTimer timer(&result->times.edge_checks, &result->gpu_calls.edge_checks, *checker_,
-                   *neighbors_);
+                   neighbors_);
   // In parts of kPart edges (PRM hands over millions), each part's verdicts kept: memory
   // stays bounded, and a stop loses only the part under way, whose edges stay unknown.
   constexpr std::size_t kPart = std::size_t(1) << 18;
@@ -364,7 +329,7 @@ void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanRe
 PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   started_ = Clock::now();
   PlanResult result;
-  const std::size_t gpu_calls_before = gpu_calls_of(*checker_, *neighbors_);
+  const std::size_t gpu_calls_before = gpu_calls_of(*checker_, neighbors_);
   local_.reset_stats();
   certifier_.reset_stats();
   const int width = scene_.space.width();
@@ -397,7 +362,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     }
     if (count > 0) {
       double sampler_seconds = 0;  // the sampler splits its time between two stages itself
-      StageTimer calls(&sampler_seconds, &result.gpu_calls.state_checks, *checker_, *neighbors_);
+      StageTimer calls(&sampler_seconds, &result.gpu_calls.state_checks, *checker_, neighbors_);
       add_milestones(count, &result);
     }
     report("milestones", result);
@@ -475,7 +440,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       bool checked;
       {
         StageTimer timer(&result.times.edge_checks, &result.gpu_calls.edge_checks, *checker_,
-                         *neighbors_);
+                         neighbors_);
         checked =
             check_edge_motions(certifies_path() ? static_cast<MotionChecker*>(&certifier_) : &fine,
                                unchecked, &invalid);
@@ -510,7 +475,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     result.length = result.length_before_shortcut;
     if (options_.shortcut_rounds > 0) {
       StageTimer timer(&result.times.shortcutting, &result.gpu_calls.shortcutting, *checker_,
-                       *neighbors_);
+                       neighbors_);
       // Its own generator: the sampler's position depends on how many attempts the
       // time-sized batches made.
       std::mt19937_64 shortcut_rng(options_.seed ^ 0x5bd1e995u);
@@ -523,7 +488,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   result.samples_checked = local_.stats().samples + certifier_.stats().checks;
   result.edge_batches = local_.stats().batches + fine.stats().batches + certifier_.stats().batches;
   result.times.total = elapsed();
-  result.gpu_calls.total = gpu_calls_of(*checker_, *neighbors_) - gpu_calls_before;
+  result.gpu_calls.total = gpu_calls_of(*checker_, neighbors_) - gpu_calls_before;
   neighbors_->set_stop(nullptr);
   return result;
 }

@@ -9,38 +9,12 @@
 #include "gplanner/planner/planning/path_shortcutting.h"
 #include "gplanner/planner/planning/scene_metric.h"
 #include "gplanner/planner/scene/scene.h"
+#include "stage_timer.h"
 
 namespace gplanner {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Adds the time from construction to destruction to `*seconds`, and the GPU calls the
-// checker made meanwhile to `*calls`.
-class StageTimer {
- public:
-  StageTimer(double* seconds, std::size_t* calls, const CollisionChecker& checker)
-      : seconds_(seconds),
-        calls_(calls),
-        checker_(checker),
-        calls_before_(checker.device_calls()),
-        start_(Clock::now()) {}
-  ~StageTimer() {
-    *seconds_ += seconds_since(start_);
-    *calls_ += checker_.device_calls() - calls_before_;
-  }
-
- private:
-  double* seconds_;
-  std::size_t* calls_;
-  const CollisionChecker& checker_;
-  std::size_t calls_before_;
-  Clock::time_point start_;
-};
 
 // Where calls have a fixed cost, a round's lanes fill about half of it in rows (a call
 // costs about the same up to there), within these bounds.

@@ -30,6 +30,7 @@
 #include "gplanner/planner/scene/scene_collision_model.h"
 #include "interruption.h"
 #include "json_line.h"
+#include "view_command.h"
 
 namespace gplan {
 namespace {
@@ -160,10 +161,7 @@ CheckRequest read_check_request(int argc, char** argv) {
     throw UsageError("--pairs adds the colliding pair to each row of --out FILE; add --out");
   r.html = args.text("html", "");
   if (args.has("html") && r.html.empty()) throw UsageError("--html: give a file name");
-  if (args.has("html") && !gplanner::path_viewer_available())
-    throw UsageError(
-        "--html: this gplan was built without the viewer (no npm at build time); "
-        "build with -DGPLANNER_VIEWER=ON where npm can reach its registry");
+  if (args.has("html")) require_path_viewer();
   return r;
 }
 
@@ -217,31 +215,47 @@ bool check_repeated(gplanner::CollisionChecker* checker, const std::vector<float
   return true;
 }
 
-// --pairs: per colliding row, the pair FCL finds colliding (a link, then an obstacle's
-// key or a second link), "- -" for a free row; a colliding row where no surfaces meet
-// (inside a closed body, or within the band) gets the closest pair and "(no-contact)".
-// False when interrupted.
-bool colliding_pairs(const gplanner::Scene& scene, const std::vector<float>& q,
-                     const std::vector<std::uint8_t>& verdicts, std::vector<std::string>* columns) {
+// Rows shown by --html: the first colliding ones.
+constexpr std::size_t kViewedRows = 50;
+
+// The pair FCL finds colliding (CollisionReporter) at each of the first `most` colliding
+// rows, by row (free rows and those past `most`: none). False when interrupted.
+bool find_colliding_pairs(const gplanner::Scene& scene, const std::vector<float>& q,
+                          const std::vector<std::uint8_t>& verdicts, std::size_t most,
+                          std::vector<std::optional<gplanner::CollisionPair>>* pairs) {
   const std::size_t width = scene.space.width();
+  pairs->assign(verdicts.size(), std::nullopt);
+  if (most == 0) return true;
   gplanner::CollisionReporter reporter(scene);
-  columns->assign(verdicts.size(), "- -");
-  for (std::size_t i = 0; i < verdicts.size(); ++i) {
-    if (interrupted()) return false;
+  std::size_t found = 0;
+  for (std::size_t i = 0; i < verdicts.size() && found < most; ++i) {
     if (!verdicts[i]) continue;
-    const gplanner::CollisionPair pair = reporter.first_pair(&q[i * width]);
-    (*columns)[i] = pair.a_key + " " + pair.b_key + (pair.found ? "" : " (no-contact)");
+    if (interrupted()) return false;
+    (*pairs)[i] = reporter.first_pair(&q[i * width]);
+    ++found;
   }
   return true;
 }
 
-// --html: the first kViewedRows colliding rows in the 3-D viewer, each with the pair FCL
-// finds colliding (CollisionReporter) drawn red and named; where none collides, the first
-// row. False when interrupted.
-bool write_colliding_rows_viewer(const std::string& html, const gplanner::Scene& scene,
+// --pairs: per row, its pair (a link, then an obstacle's key or a second link), "- -" for a
+// free row; a colliding row where no surfaces meet (inside a closed body, or within the
+// band) gets the closest pair and "(no-contact)".
+std::vector<std::string> pair_columns_of(
+    const std::vector<std::optional<gplanner::CollisionPair>>& pairs) {
+  std::vector<std::string> columns(pairs.size(), "- -");
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (!pairs[i]) continue;
+    columns[i] = pairs[i]->a_key + " " + pairs[i]->b_key + (pairs[i]->found ? "" : " (no-contact)");
+  }
+  return columns;
+}
+
+// --html: the first kViewedRows colliding rows in the 3-D viewer, each with its pair
+// (`pairs`, found for them) drawn red and named; where none collides, the first row.
+void write_colliding_rows_viewer(const std::string& html, const gplanner::Scene& scene,
                                  const std::vector<float>& q,
-                                 const std::vector<std::uint8_t>& verdicts) {
-  constexpr std::size_t kViewedRows = 50;
+                                 const std::vector<std::uint8_t>& verdicts,
+                                 const std::vector<std::optional<gplanner::CollisionPair>>& pairs) {
   const std::size_t width = scene.space.width();
   const gplanner::RobotModel& robot = scene.robot;
   auto link_index = [&](const std::string& name) {
@@ -249,15 +263,13 @@ bool write_colliding_rows_viewer(const std::string& html, const gplanner::Scene&
       if (robot.links[l].name == name) return static_cast<int>(l);
     return -1;
   };
-  gplanner::CollisionReporter reporter(scene);
   std::vector<float> rows;
   std::vector<gplanner::ViewedRow> viewed;
   std::size_t colliding = 0;
   for (std::size_t i = 0; i < verdicts.size(); ++i) colliding += verdicts[i];
   for (std::size_t i = 0; i < verdicts.size() && viewed.size() < kViewedRows; ++i) {
-    if (!verdicts[i]) continue;
-    if (interrupted()) return false;
-    const gplanner::CollisionPair pair = reporter.first_pair(&q[i * width]);
+    if (!pairs[i]) continue;
+    const gplanner::CollisionPair& pair = *pairs[i];
     gplanner::ViewedRow row;
     row.label = "row " + std::to_string(i) + ", " + pair.describe();
     row.link = link_index(pair.a_key);
@@ -283,7 +295,6 @@ bool write_colliding_rows_viewer(const std::string& html, const gplanner::Scene&
                                   " shown, what collides in red",
                               &notice);
   if (!notice.empty()) std::cerr << "notice: " << gplanner::terminal_text(notice) << "\n";
-  return true;
 }
 
 // --out: each configuration's values as the scene file gives them (world or plane
@@ -376,20 +387,26 @@ int run_check(int argc, char** argv) {
     c.gpu = gpu_call(other.get());
   }
 
+  // The colliding pairs, found once for both outputs: every colliding row's for --pairs,
+  // the first kViewedRows' for --html.
+  std::vector<std::optional<gplanner::CollisionPair>> pairs;
+  const std::size_t most = request.pairs ? n : request.html.empty() ? 0 : kViewedRows;
+  if (!find_colliding_pairs(scene, q, verdicts, most, &pairs))
+    return report_interruption({}, unwritten);
   if (!request.out.empty()) {
-    std::vector<std::string> pair_columns;
-    if (request.pairs && !colliding_pairs(scene, q, verdicts, &pair_columns))
-      return report_interruption({}, unwritten);
     if (interrupted()) return report_interruption({}, unwritten);
-    write_verdict_file(request.out, scene, q, verdicts, pair_columns);
+    write_verdict_file(request.out, scene, q, verdicts,
+                       request.pairs ? pair_columns_of(pairs) : std::vector<std::string>{});
     report.written = request.out;
   }
   if (!request.html.empty()) {
-    if (!write_colliding_rows_viewer(request.html, scene, q, verdicts))
+    if (interrupted()) {
       return report_interruption(report.written.empty()
                                      ? std::vector<std::string>{}
                                      : std::vector<std::string>{"--out " + report.written},
                                  {"--html " + request.html});
+    }
+    write_colliding_rows_viewer(request.html, scene, q, verdicts, pairs);
   }
   std::cout << report.text();
   if (!request.html.empty())

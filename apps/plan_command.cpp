@@ -31,6 +31,7 @@
 #include "interruption.h"
 #include "json_line.h"
 #include "plan_report.h"
+#include "view_command.h"
 
 namespace gplan {
 namespace {
@@ -111,10 +112,7 @@ PlanRequest read_plan_request(int argc, char** argv) {
     throw UsageError("--html-roadmap draws in --html FILE; give it");
   if (r.html_roadmap && !gplanner::keeps_roadmap(r.planner))
     throw UsageError("--html-roadmap: --planner rrtconnect keeps no roadmap; use lazyprm or prm");
-  if (args.has("html") && !gplanner::path_viewer_available())
-    throw UsageError(
-        "--html: this gplan was built without the viewer (no npm at build time); "
-        "build with -DGPLANNER_VIEWER=ON where npm can reach its registry");
+  if (args.has("html")) require_path_viewer();
   for (const char* option : {"out", "picture", "html", "save-roadmap"}) {
     if (args.has(option)) r.outputs.push_back({std::string("--") + option, args.text(option, "")});
   }

@@ -16,6 +16,11 @@
 
 namespace gplan {
 
+void require_path_viewer() {
+  const std::string missing = gplanner::path_viewer_missing();
+  if (!missing.empty()) throw UsageError("--html: " + missing);
+}
+
 int run_view(int argc, char** argv) {
   namespace fs = std::filesystem;
   const CommandLine args(argc, argv, 2, {"scene", "html"}, {});
@@ -23,10 +28,7 @@ int run_view(int argc, char** argv) {
     throw UsageError("gplan view takes one path file, not " +
                      std::to_string(args.positionals().size()) + "; give exactly one");
   if (!args.has("html")) throw UsageError("gplan view writes --html FILE; give it");
-  if (!gplanner::path_viewer_available())
-    throw UsageError(
-        "--html: this gplan was built without the viewer (no npm at build time); "
-        "build with -DGPLANNER_VIEWER=ON where npm can reach its registry");
+  require_path_viewer();
   const std::string path_file = args.positionals()[0];
   const std::string html = args.text("html", "");
   std::string scene_file = args.text("scene", "");

@@ -8,4 +8,7 @@ namespace gplan {
 // or --scene. Exit 0 when written, 2 on bad input.
 int run_view(int argc, char** argv);
 
+// Refuses --html (UsageError) where this gplan was built without the viewer.
+void require_path_viewer();
+
 }  // namespace gplan

@@ -65,6 +65,13 @@ TriangleMesh box_mesh(const TriangleMesh& mesh) {
 
 bool path_viewer_available() { return kViewerBundle[0] != '\0'; }
 
+std::string path_viewer_missing() {
+  return path_viewer_available()
+             ? ""
+             : "this gplan was built without the viewer (no npm at build time); build with "
+               "-DGPLANNER_VIEWER=ON where npm can reach its registry";
+}
+
 namespace {
 
 // The page: `frames` (shape [*, width]) are the robot's configurations in order;
@@ -74,10 +81,7 @@ void write_viewer(const std::string& file, const Scene& scene, const std::vector
                   const std::vector<std::size_t>& waypoint_frames,
                   const std::vector<ViewedRow>& viewed, const std::string& summary,
                   std::string* notice, const Roadmap* roadmap) {
-  if (!path_viewer_available())
-    throw std::runtime_error(
-        "this gplan was built without the viewer (no npm at build time); build with "
-        "-DGPLANNER_VIEWER=ON where npm can reach its registry");
+  if (!path_viewer_available()) throw std::runtime_error(path_viewer_missing());
   const ConfigurationSpace& space = scene.space;
   const RobotModel& robot = scene.robot;
   const int width = space.width();

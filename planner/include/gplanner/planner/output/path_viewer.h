@@ -28,6 +28,8 @@ class Roadmap;
 
 // Whether this build holds the viewer (it needs npm at build time: GPLANNER_VIEWER).
 bool path_viewer_available();
+// Where it does not, why and what to do (one line); "" where it does.
+std::string path_viewer_missing();
 
 // Writes the viewer of `path` (shape [waypoints, width]) atomically; summary: a line of
 // text shown under the scene's name. roadmap: null, or the roadmap to draw on request

@@ -119,7 +119,7 @@ struct CheckRequest {
 CheckRequest read_check_request(int argc, char** argv) {
   const CommandLine args(argc, argv, 2,
                          {"n", "seed", "backend", "traversal", "compare", "threads",
-                          "memory-cap-mb", "small-batch", "out", "repeat", "html"},
+                          "memory-cap-mb", "small-batch", "device", "out", "repeat", "html"},
                          {"json", "pairs"});
   if (args.positionals().size() != 1)
     throw UsageError("gplan check takes one scene file, not " +
@@ -147,7 +147,8 @@ CheckRequest read_check_request(int argc, char** argv) {
   }
   // The GPU's settings change nothing on the other backends: say so rather than ignore
   // them (a memory cap meant to be tested would go untested).
-  for (const char* gpu_only : {"traversal", "memory-cap-mb", "small-batch"}) {
+  r.options.gpu.device = args.gpu_device(0);
+  for (const char* gpu_only : {"traversal", "memory-cap-mb", "small-batch", "device"}) {
     if (args.has(gpu_only) && r.backend != "gpu" && r.compare != "gpu") {
       throw UsageError(std::string("--") + gpu_only +
                        " applies to the gpu backend only; add --backend gpu or --compare gpu");

@@ -24,8 +24,8 @@ const char* const kUsage =
     "usage: gplan COMMAND ...\n"
     "  gplan check SCENE [--n N] [--seed S] [--backend gpu|cpu|fcl]\n"
     "                    [--traversal basic|packet|balanced] [--compare BACKEND]\n"
-    "                    [--threads T] [--memory-cap-mb M] [--small-batch N] [--repeat R]\n"
-    "                    [--out FILE [--pairs]] [--html FILE.html] [--json]\n"
+    "                    [--threads T] [--memory-cap-mb M] [--small-batch N] [--device D]\n"
+    "                    [--repeat R] [--out FILE [--pairs]] [--html FILE.html] [--json]\n"
     "      sample N configurations (default 10000, seed 1) within the scene's bounds and\n"
     "      joint limits and check them (default backend fcl; gpu falls back to cpu where\n"
     "      there is no GPU); --compare runs a second backend on the same configurations\n"
@@ -34,12 +34,14 @@ const char* const kUsage =
     "      median time; --small-batch: the balanced traversal runs batches of up to N\n"
     "      queries in one kernel, a warp per body pair (default: 1024 for robots with\n"
     "      many links, 10 for rigid ones; 0: never); with --backend gpu every call runs\n"
-    "      on the GPU (the planners answer small calls on the host); --out\n"
+    "      on the GPU (the planners answer small calls on the host); --device D: the\n"
+    "      CUDA device (0, 1, ... among those CUDA_VISIBLE_DEVICES leaves; all: every\n"
+    "      one, batches of 32768 or more split across them; default 0); --out\n"
     "      writes each configuration's values and its\n"
     "      verdict (1 collision, 0 free), one per line; --json ends with a JSON summary\n"
     "  gplan plan SCENE [--planner auto|rrtconnect|lazyprm|prm] [--backend gpu|cpu|fcl]\n"
     "                   [--seed S] [--time-limit SECONDS] [--milestones N] [--traversal T]\n"
-    "                   [--threads T]"
+    "                   [--threads T] [--device D]"
     " [--load-roadmap FILE] [--save-roadmap FILE] [--out FILE]\n"
     "                   [--picture FILE.svg] [--html FILE.html [--html-roadmap]]\n"
     "                   [--edges sampled|certified] [--path-check certified|fine] [--json]\n"
@@ -52,7 +54,8 @@ const char* const kUsage =
     "      when no path is found within the time limit. The path returned is certified\n"
     "      free along every motion (docs/design.md, \"Certified motions\"); --path-check\n"
     "      fine re-checks it at samples instead; --edges certified certifies every edge\n"
-    "      the planner uses, not only the path's\n"
+    "      the planner uses, not only the path's; --device D: the gpu backend's CUDA\n"
+    "      device, as gplan check's\n"
     "  gplan view PATHFILE [--scene SCENE] --html FILE.html\n"
     "      the 3-D view of a path file (plan --out, a gplan-bench failed_paths/ entry) in\n"
     "      its scene (the file's scene: key, or --scene)\n"
@@ -60,7 +63,8 @@ const char* const kUsage =
     "      deprecated alias of gplan-bench CONFIG ... (the benchmark program installed\n"
     "      beside gplan; gplan-bench --help), to be removed in 0.4\n"
     "  gplan info\n"
-    "      gplanner's version, how it was built and which GPU it can use\n"
+    "      gplanner's version, how it was built and which GPUs it can use (numbered as\n"
+    "      --device numbers them)\n"
     "Output files (--out, --picture, --html, --save-roadmap) are checked before any work: a\n"
     "regular file or a new one in a writable folder, never a folder or device, never a\n"
     "file the run reads or another output; a symbolic link is written through to its\n"
@@ -78,12 +82,16 @@ int run_info() {
   std::cout << "gplanner    " << gplanner::version() << "\n";
   std::cout << "CUDA        " << (device.compiled_with_cuda ? "compiled in" : "not compiled in")
             << "\n";
-  if (device.available) {
-    std::cout << "GPU         " << device.name << " (sm_" << device.compute_major
-              << device.compute_minor << ", " << device.multiprocessors << " SMs, "
-              << device.memory_bytes / (1024 * 1024) << " MiB)\n";
-  } else {
+  if (!device.available) {
     std::cout << "GPU         none: " << device.reason << "\n";
+    return 0;
+  }
+  // Every device the process sees, numbered as --device numbers them.
+  for (int d = 0; d < device.count; ++d) {
+    const gplanner::GpuDevice gpu = d == 0 ? device : gplanner::query_gpu_device(d);
+    std::cout << "GPU " << d << (d < 10 ? "       " : "      ") << gpu.name << " (sm_"
+              << gpu.compute_major << gpu.compute_minor << ", " << gpu.multiprocessors << " SMs, "
+              << gpu.memory_bytes / (1024 * 1024) << " MiB)\n";
   }
   return 0;
 }

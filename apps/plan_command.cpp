@@ -63,7 +63,7 @@ struct PlanRequest {
 PlanRequest read_plan_request(int argc, char** argv) {
   const CommandLine args(
       argc, argv, 2,
-      {"planner", "backend", "seed", "time-limit", "milestones", "traversal", "threads",
+      {"planner", "backend", "seed", "time-limit", "milestones", "traversal", "threads", "device",
        "load-roadmap", "save-roadmap", "out", "picture", "html", "edges", "path-check"},
       {"json", "html-roadmap"});
   if (args.positionals().size() != 1)
@@ -90,8 +90,12 @@ PlanRequest read_plan_request(int argc, char** argv) {
     throw UsageError("--traversal: '" + args.text("traversal", "") +
                      "' is not one of basic, packet, balanced");
   }
-  if (args.has("traversal") && r.backend != "gpu")
-    throw UsageError("--traversal applies to the gpu backend only; add --backend gpu");
+  r.checker_options.gpu.device = args.gpu_device(0);
+  for (const char* gpu_only : {"traversal", "device"}) {
+    if (args.has(gpu_only) && r.backend != "gpu")
+      throw UsageError(std::string("--") + gpu_only +
+                       " applies to the gpu backend only; add --backend gpu");
+  }
   if (!gplanner::parse_edge_checks(args.text("edges", "sampled"), &r.edges))
     throw UsageError("--edges: '" + args.text("edges", "") + "' is not one of sampled, certified");
   const std::string path_check = args.text("path-check", "certified");
@@ -227,7 +231,8 @@ int run_plan(int argc, char** argv) {
   std::unique_ptr<gplanner::NeighborFinder> neighbors;
   if (gplanner::keeps_roadmap(request.planner)) {  // auto may hand over to lazy PRM
     std::string knn_notice;
-    neighbors = gplanner::make_neighbor_finder(metric, checker->backend(), &knn_notice);
+    neighbors = gplanner::make_neighbor_finder(metric, checker->backend(), &knn_notice,
+                                               checker->gpu_device());
     if (!knn_notice.empty()) std::cerr << "notice: " << gplanner::terminal_text(knn_notice) << "\n";
   }
   options.should_stop = [] { return interrupted(); };

@@ -83,4 +83,16 @@ double CommandLine::positive_number(const std::string& name, double fallback) co
   return value;
 }
 
+int CommandLine::gpu_device(int fallback) const {
+  const auto it = values_.find("device");
+  if (it == values_.end()) return fallback;
+  if (it->second == "all") return -1;
+  if (it->second.empty() || it->second.size() > 4 ||
+      it->second.find_first_not_of("0123456789") != std::string::npos) {
+    throw UsageError("--device expects a CUDA device number (0, 1, ...) or all, not '" +
+                     excerpt(it->second) + "'");
+  }
+  return std::stoi(it->second);
+}
+
 }  // namespace gplan

@@ -31,6 +31,9 @@ class CommandLine {
                            unsigned long long low, unsigned long long high) const;
   // Positive finite numbers, rejected with a UsageError naming the option otherwise.
   double positive_number(const std::string& name, double fallback) const;
+  // --device N|all: a CUDA device number (among those the process sees), or -1 for
+  // "all" (GpuCheckerOptions::kAllDevices); `fallback` when not given.
+  int gpu_device(int fallback) const;
 
  private:
   std::vector<std::string> positionals_;

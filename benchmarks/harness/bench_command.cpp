@@ -17,6 +17,13 @@
 #include <set>
 #include <sstream>
 
+#include "command_line.h"
+#include "gplanner/common/parallel_for.h"
+#include "gplanner/planner/checkers/fcl_checker.h"
+#include "gplanner/planner/output/output_paths.h"
+#include "gplanner/planner/output/text_escaping.h"
+#include "gplanner/planner/scene/input_file.h"
+#include "gplanner/planner/scene/scene.h"
 #include "harness/bench_baseline.h"
 #include "harness/bench_config.h"
 #include "harness/bench_files.h"
@@ -27,26 +34,26 @@
 #include "harness/broad_phase_study.h"
 #include "harness/error_time_study.h"
 #include "harness/ompl_log.h"
-#include "command_line.h"
-#include "gplanner/planner/checkers/fcl_checker.h"
-#include "gplanner/planner/output/output_paths.h"
-#include "gplanner/planner/output/text_escaping.h"
-#include "gplanner/planner/scene/input_file.h"
-#include "gplanner/planner/scene/scene.h"
 #include "interruption.h"
 
 namespace gplan {
 
 const char* const kBenchUsage =
-    "usage: gplan-bench CONFIG [-o DIR] [--jobs N] [--baseline FILE] [--save-baseline FILE]\n"
-    "                   [--shard I/N] [--report DIR] [--no-plots]\n"
+    "usage: gplan-bench CONFIG [-o DIR] [--jobs N] [--gpus N] [--threads N]\n"
+    "                   [--baseline FILE] [--save-baseline FILE] [--shard I/N] [--report DIR]\n"
+    "                   [--no-plots]\n"
     "      regression runs and the seed's tables as a configuration (benchmarks/config/*.yaml)\n"
     "      says: every run in a worker process with its own seed, progress on stderr;\n"
     "      writes DIR (default gplan-bench-NAME-DATE-TIME; a new or empty folder):\n"
     "      results.csv, summary.txt (also printed), ompl/SCENE.log (OMPL's benchmark log,\n"
     "      for ompl_benchmark_statistics), plots/ (PNG and SVG, with matplotlib);\n"
     "      --jobs: OMPL's planners on one thread (@fcl, @gpu) run N at a time, one on\n"
-    "      the GPU; a path failing the re-check is kept in DIR/failed_paths/;\n"
+    "      each GPU; --gpus: the gpu groups use at most N of the GPUs the machine shows\n"
+    "      (default all; CUDA_VISIBLE_DEVICES chooses which), one GPU per worker, ours\n"
+    "      one per GPU at a time with a GPU's share of the cores (results.csv's device\n"
+    "      column says which ran where); --threads: the host threads of every group\n"
+    "      (default: all cores for a group that runs alone, shared otherwise);\n"
+    "      a path failing the re-check is kept in DIR/failed_paths/;\n"
     "      --save-baseline keeps the groups' figures, --baseline compares with them\n"
     "      (exit 5 on a regression beyond the configuration's tolerances); exit 3 when a\n"
     "      returned path fails the fine FCL re-check; --shard I/N runs only the I-th of\n"
@@ -220,6 +227,16 @@ int conclude(const BenchConfig& config, const std::vector<BenchRecord>& records,
   print_summary(summary, groups);
   if (config.problem_set) print_problem_set_summary(summary, records);
   print_stage_summary(summary, records);
+  std::map<long long, int> runs_by_device;  // where several GPUs ran the gpu groups
+  for (const BenchRecord& r : records)
+    if (r.device >= 0) ++runs_by_device[r.device];
+  if (runs_by_device.size() > 1) {
+    summary << "\nruns by GPU:";
+    for (const auto& [device, runs] : runs_by_device)
+      summary << (device == runs_by_device.begin()->first ? " " : ", ") << "device " << device
+              << " " << runs;
+    summary << "\n";
+  }
   int failed_paths = 0;
   for (const GroupSummary& g : groups) failed_paths += g.path_failures;
   if (failed_paths) {
@@ -277,14 +294,17 @@ int run_bench(int argc, char** argv) {
     if (word == "-o") word = "--out";
   std::vector<char*> args_v;
   for (std::string& word : words) args_v.push_back(word.data());
-  const CommandLine args(int(args_v.size()), args_v.data(), 1,
-                         {"out", "jobs", "baseline", "save-baseline", "report", "shard"},
-                         {"no-plots"});
+  const CommandLine args(
+      int(args_v.size()), args_v.data(), 1,
+      {"out", "jobs", "gpus", "threads", "baseline", "save-baseline", "report", "shard"},
+      {"no-plots"});
   if (args.positionals().size() != 1)
     throw UsageError("gplan-bench takes one configuration file (benchmarks/config/*.yaml), not " +
                      std::to_string(args.positionals().size()) + "; give exactly one");
   const std::string config_file = args.positionals()[0];
   const int jobs = static_cast<int>(args.count("jobs", 1, 1, 1024));
+  const int max_gpus = static_cast<int>(args.count("gpus", 1024, 1, 1024));
+  const int threads = static_cast<int>(args.count("threads", 0, 1, gplanner::kMaxThreads));
   const std::string baseline = args.text("baseline", "");
   const std::string save = args.text("save-baseline", "");
   const bool report = args.has("report");
@@ -301,7 +321,8 @@ int run_bench(int argc, char** argv) {
   gplanner::check_output_paths(outputs, inputs);
   BenchConfig config = load_bench_config(config_file);
   if (config.kind == "error-time" || config.kind == "broad-phase") {
-    for (const char* option : {"baseline", "save-baseline", "report", "jobs", "shard"}) {
+    for (const char* option :
+         {"baseline", "save-baseline", "report", "jobs", "gpus", "threads", "shard"}) {
       if (args.has(option))
         throw UsageError(std::string("--") + option + " does not apply to the " + config.kind +
                          " study (" + config_file + "); leave it out");
@@ -387,6 +408,20 @@ int run_bench(int argc, char** argv) {
   if (config.kind == "error-time")
     return run_error_time_study(config, scenes, dir, !args.flag("no-plots"), should_stop);
   const std::vector<BenchGroup> groups = bench_groups(config);
+  BenchResources resources;
+  resources.jobs = jobs;
+  resources.threads = threads;
+  if (std::any_of(groups.begin(), groups.end(), [](const BenchGroup& g) { return g.gpu; })) {
+    const int visible = count_gpus_in_child();
+    resources.gpus = std::max(1, std::min(max_gpus, visible));
+    if (visible > 1 || args.has("gpus")) {
+      std::cerr << "GPUs: " << resources.gpus << " of the " << visible << " this machine shows"
+                << (args.has("gpus") && max_gpus > visible
+                        ? " (--gpus " + std::to_string(max_gpus) + " asked for more)"
+                        : std::string())
+                << "\n";
+    }
+  }
   const std::string started = local_date_time();
   // Each record also goes to results.partial.csv as it comes, so that the runs done are
   // kept when the benchmark is interrupted or killed; results.csv replaces it at the end.
@@ -394,7 +429,7 @@ int run_bench(int argc, char** argv) {
   std::ofstream partial_csv(partial);
   write_bench_csv_header(partial_csv);
   std::vector<BenchRecord> records = run_bench_groups(
-      config, scenes, groups, jobs, std::cerr, should_stop,
+      config, scenes, groups, resources, std::cerr, should_stop,
       [&](const BenchRecord& record) {
         write_bench_csv_line(partial_csv, record);
         partial_csv.flush();

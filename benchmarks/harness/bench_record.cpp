@@ -83,16 +83,21 @@ const std::vector<std::string>& stage_columns() {
   return columns;
 }
 
-// The CSV layouts gplan-bench has written: this version's; before gpu_calls (issue 33's
-// first figures); before the stage columns (issues 22 to 32); before check_time_s too
-// (until issue 22).
-enum class CsvLayout { kCurrent, kBeforeGpuCalls, kBeforeStages, kBeforeCheckTime };
+// The CSV layouts gplan-bench has written: this version's; before device (until issue
+// 36); before gpu_calls (issue 33's first figures); before the stage columns (issues 22
+// to 32); before check_time_s too (until issue 22).
+enum class CsvLayout { kCurrent, kBeforeDevice, kBeforeGpuCalls, kBeforeStages, kBeforeCheckTime };
 
 // A layout's columns, made once per layout (records are read one by one).
 const std::vector<std::string>& columns_of(CsvLayout layout) {
   static const std::vector<std::string> current = bench_csv_columns();
-  static const std::vector<std::string> before_gpu_calls = [] {
+  static const std::vector<std::string> before_device = [] {
     std::vector<std::string> all = bench_csv_columns();
+    all.erase(std::find(all.begin(), all.end(), "device"));
+    return all;
+  }();
+  static const std::vector<std::string> before_gpu_calls = [] {
+    std::vector<std::string> all = before_device;
     all.erase(std::find(all.begin(), all.end(), "gpu_calls"));
     return all;
   }();
@@ -109,6 +114,8 @@ const std::vector<std::string>& columns_of(CsvLayout layout) {
   switch (layout) {
     case CsvLayout::kCurrent:
       return current;
+    case CsvLayout::kBeforeDevice:
+      return before_device;
     case CsvLayout::kBeforeGpuCalls:
       return before_gpu_calls;
     case CsvLayout::kBeforeStages:
@@ -151,7 +158,8 @@ BenchRecord record_from_fields(const std::vector<std::string>& f,
     r.path_check = f[column++];
     r.work = parse_count(f[column++]);
     r.collisions = parse_count(f[column++]);
-    if (layout == CsvLayout::kCurrent || layout == CsvLayout::kBeforeGpuCalls) {
+    if (layout == CsvLayout::kCurrent || layout == CsvLayout::kBeforeDevice ||
+        layout == CsvLayout::kBeforeGpuCalls) {
       r.sampling_s = parse_number(f[column++]);
       r.state_checks_s = parse_number(f[column++]);
       r.knn_s = parse_number(f[column++]);
@@ -159,7 +167,9 @@ BenchRecord record_from_fields(const std::vector<std::string>& f,
       r.edge_checks_s = parse_number(f[column++]);
       r.rounds = parse_count(f[column++]);
     }
-    if (layout == CsvLayout::kCurrent) r.gpu_calls = parse_count(f[column++]);
+    if (layout == CsvLayout::kCurrent || layout == CsvLayout::kBeforeDevice)
+      r.gpu_calls = parse_count(f[column++]);
+    if (layout == CsvLayout::kCurrent) r.device = parse_count(f[column++]);
     r.note = f[column++];
     return r;
   } catch (const std::exception& e) {
@@ -170,16 +180,34 @@ BenchRecord record_from_fields(const std::vector<std::string>& f,
 }  // namespace
 
 const std::vector<std::string>& bench_csv_columns() {
-  static const std::vector<std::string> columns = {
-      "experiment",      "scene",        "planner",
-      "checker",         "run",          "seed",
-      "status",          "solved",       "time_s",
-      "simplify_time_s", "length",       "simplified_length",
-      "checks",          "check_time_s", "graph_states",
-      "memory_mb",       "path_check",   "work",
-      "collisions",      "sampling_s",   "state_checks_s",
-      "knn_s",           "search_s",     "edge_checks_s",
-      "rounds",          "gpu_calls",    "note"};
+  static const std::vector<std::string> columns = {"experiment",
+                                                   "scene",
+                                                   "planner",
+                                                   "checker",
+                                                   "run",
+                                                   "seed",
+                                                   "status",
+                                                   "solved",
+                                                   "time_s",
+                                                   "simplify_time_s",
+                                                   "length",
+                                                   "simplified_length",
+                                                   "checks",
+                                                   "check_time_s",
+                                                   "graph_states",
+                                                   "memory_mb",
+                                                   "path_check",
+                                                   "work",
+                                                   "collisions",
+                                                   "sampling_s",
+                                                   "state_checks_s",
+                                                   "knn_s",
+                                                   "search_s",
+                                                   "edge_checks_s",
+                                                   "rounds",
+                                                   "gpu_calls",
+                                                   "device",
+                                                   "note"};
   return columns;
 }
 
@@ -198,7 +226,7 @@ void write_bench_csv_line(std::ostream& out, const BenchRecord& r) {
       << quoted(r.path_check) << ',' << count(r.work) << ',' << count(r.collisions) << ','
       << number(r.sampling_s) << ',' << number(r.state_checks_s) << ',' << number(r.knn_s) << ','
       << number(r.search_s) << ',' << number(r.edge_checks_s) << ',' << count(r.rounds) << ','
-      << count(r.gpu_calls) << ',' << quoted(r.note) << "\n";
+      << count(r.gpu_calls) << ',' << count(r.device) << ',' << quoted(r.note) << "\n";
 }
 
 BenchRecord parse_bench_csv_record(const std::string& text) {
@@ -228,8 +256,8 @@ std::vector<BenchRecord> read_bench_csv(const std::string& file) {
     if (first_line == 1) {
       bool known = false;
       for (const CsvLayout candidate :
-           {CsvLayout::kCurrent, CsvLayout::kBeforeGpuCalls, CsvLayout::kBeforeStages,
-            CsvLayout::kBeforeCheckTime}) {
+           {CsvLayout::kCurrent, CsvLayout::kBeforeDevice, CsvLayout::kBeforeGpuCalls,
+            CsvLayout::kBeforeStages, CsvLayout::kBeforeCheckTime}) {
         if (f == columns_of(candidate)) {
           layout = candidate;
           known = true;

@@ -56,6 +56,9 @@ struct BenchRecord {
   double edge_checks_s = kNotMeasured;
   long long rounds = -1;
   long long gpu_calls = -1;  // our planners: GPU calls of the plan (PlanGpuCalls::total)
+  // The CUDA device the run's checker used (numbered among those gplan-bench saw); -1
+  // where it used none (fcl, cpu).
+  long long device = -1;
   std::string note;  // free text: a fallback, an error message, a re-check failure
 };
 
@@ -71,9 +74,9 @@ void write_bench_csv_line(std::ostream& out, const BenchRecord& record);
 // throws std::runtime_error naming the column at fault.
 BenchRecord parse_bench_csv_record(const std::string& text);
 // Reads a CSV written by write_bench_csv_* (also those of earlier versions: without
-// gpu_calls, in issue 33's first figures; without the stage columns, until issue 33;
-// without check_time_s, until issue 22); throws
-// std::runtime_error naming the file, line and column on anything else.
+// device, until issue 36; without gpu_calls, in issue 33's first figures; without the stage
+// columns, until issue 33; without check_time_s, until issue 22); throws std::runtime_error naming
+// the file, line and column on anything else.
 std::vector<BenchRecord> read_bench_csv(const std::string& file);
 
 }  // namespace gplan

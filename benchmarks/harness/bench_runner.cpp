@@ -16,11 +16,12 @@
 #include <set>
 #include <sstream>
 
-#include "harness/plan_runs.h"
-#include "harness/query_runs.h"
+#include "gplanner/common/gpu_device.h"
 #include "gplanner/common/parallel_for.h"
 #include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/scene/scene.h"
+#include "harness/plan_runs.h"
+#include "harness/query_runs.h"
 
 namespace gplan {
 namespace {
@@ -41,7 +42,7 @@ void send(int fd, char type, const std::string& payload) {
 }
 
 [[noreturn]] void run_worker(int fd, const BenchConfig& config, const gplanner::Scene& scene,
-                             const BenchGroup& group, int host_threads,
+                             const BenchGroup& group, int host_threads, int device,
                              const std::string& failed_paths_dir,
                              const std::function<bool()>& should_stop) {
   const auto emit = [fd](const BenchRecord& record) {
@@ -53,8 +54,7 @@ void send(int fd, char type, const std::string& payload) {
   try {
     if (config.kind == "planning") {
       run_planning_group(scene, group.scene_name, group.first_run, config, group.choice,
-                         host_threads, emit,
-                         should_stop, notice, failed_paths_dir);
+                         host_threads, device, emit, should_stop, notice, failed_paths_dir);
     } else {
       QueryTableOptions options;
       options.queries = config.queries;
@@ -85,6 +85,7 @@ struct Worker {
   pid_t pid = -1;
   int fd = -1;
   std::size_t group = 0;
+  int device = -1;  // the GPU it was given (-1: none)
   std::string buffer;
   int records = 0;
   bool done = false;
@@ -108,6 +109,29 @@ std::string describe(const BenchRecord& r) {
 }
 
 }  // namespace
+
+int count_gpus_in_child() {
+  int fds[2];
+  if (::pipe(fds) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
+  if (pid == 0) {
+    ::close(fds[0]);
+    const int count = gplanner::gpu_device_count();
+    const ssize_t written = ::write(fds[1], &count, sizeof count);
+    _exit(written == sizeof count ? 0 : 1);
+  }
+  ::close(fds[1]);
+  int count = 0;
+  ssize_t n = 0;
+  while ((n = ::read(fds[0], &count, sizeof count)) < 0 && errno == EINTR) {
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return n == sizeof count ? count : 0;
+}
 
 std::string BenchGroup::label() const {
   return scene_name + " " + (table.empty() ? choice.label() : table + " " + checker);
@@ -149,8 +173,8 @@ std::vector<BenchGroup> bench_groups(const BenchConfig& config) {
 
 std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
                                           const std::vector<gplanner::Scene>& scenes,
-                                          const std::vector<BenchGroup>& groups, int jobs,
-                                          std::ostream& progress,
+                                          const std::vector<BenchGroup>& groups,
+                                          const BenchResources& resources, std::ostream& progress,
                                           const std::function<bool()>& should_stop,
                                           const std::function<void(const BenchRecord&)>& on_record,
                                           const std::string& failed_paths_dir) {
@@ -161,13 +185,29 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
   std::size_t next = 0;  // the first group not started
   // A planning run with no result this long after the last is killed.
   const double silence_limit_s = 2 * config.time_limit_s + 120;
+  const int jobs = std::max(1, resources.jobs);
+  const int gpus = std::max(1, resources.gpus);
+  const int cores = gplanner::resolve_thread_count(0);
   // The host threads of a group beside others: an OMPL planner on the gpu backend answers
   // small calls on the host's thread pool, which gets the cores the other `jobs` - 1
   // single-threaded groups leave, so that neither it nor FCL's runs beside it are
-  // handicapped by the other. Groups that run alone get every core (0).
-  const int beside_others_threads = std::max(1, gplanner::resolve_thread_count(0) - (jobs - 1));
+  // handicapped by the other. Groups that run alone get every core (0); ours on the gpu
+  // backend, one per GPU side by side, a GPU's share of them. --threads sets them all.
+  const auto host_threads_of = [&](const BenchGroup& group) {
+    if (resources.threads > 0) return resources.threads;
+    if (!group.alone) return std::max(1, cores - (jobs - 1));
+    if (group.gpu && gpus > 1) return std::max(1, cores / gpus);
+    return 0;
+  };
+  // The GPUs in use by running workers.
+  std::vector<bool> gpu_busy(static_cast<std::size_t>(gpus), false);
+  const auto free_gpu = [&] {
+    for (int d = 0; d < gpus; ++d)
+      if (!gpu_busy[d]) return d;
+    return -1;
+  };
 
-  const auto start_worker = [&](std::size_t g) {
+  const auto start_worker = [&](std::size_t g, int device) {
     int fds[2];
     if (::pipe(fds) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
     progress.flush();
@@ -176,17 +216,21 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
     if (pid == 0) {
       ::close(fds[0]);
       for (const Worker& other : running) ::close(other.fd);
-      run_worker(fds[1], config, scenes[groups[g].scene], groups[g],
-                 groups[g].alone ? 0 : beside_others_threads, failed_paths_dir, should_stop);
+      run_worker(fds[1], config, scenes[groups[g].scene], groups[g], host_threads_of(groups[g]),
+                 std::max(device, 0), failed_paths_dir, should_stop);
     }
     ::close(fds[1]);
     Worker worker;
     worker.pid = pid;
     worker.fd = fds[0];
     worker.group = g;
+    worker.device = device;
+    if (device >= 0) gpu_busy[device] = true;
     running.push_back(worker);
     progress << "[" << g + 1 << "/" << groups.size() << "] " << groups[g].label() << ": "
-             << groups[g].runs << (config.kind == "planning" ? " runs" : " timed calls") << "\n";
+             << groups[g].runs << (config.kind == "planning" ? " runs" : " timed calls");
+    if (device >= 0 && gpus > 1) progress << " on GPU " << device;
+    progress << "\n";
   };
 
   const auto take_messages = [&](Worker& worker) {
@@ -232,6 +276,7 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
     record.run = group.first_run + worker.records;
     record.seed = config.seed + static_cast<std::uint64_t>(worker.records);
     record.status = "crash";
+    record.device = worker.device;
     if (!worker.killed.empty()) {
       record.note = worker.killed;
     } else if (WIFSIGNALED(status)) {
@@ -253,24 +298,33 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
       running.clear();
       break;
     }
-    // Start what may start: a group that runs alone when nothing runs; single-threaded
-    // ones up to `jobs`, never beside one that runs alone, one on the GPU at a time.
+    // Start what may start: a group that runs alone when nothing runs (ours on the gpu
+    // backend: beside others of its kind, one per GPU); single-threaded ones up to
+    // `jobs`, never beside one that runs alone, one per GPU on the gpu backend.
     for (std::size_t g = next; g < groups.size(); ++g) {
       if (started[g]) continue;
-      const auto running_any = [&](bool BenchGroup::*what) {
-        return std::any_of(running.begin(), running.end(),
-                           [&](const Worker& w) { return groups[w.group].*what; });
-      };
-      const bool may_start =
-          groups[g].alone ? running.empty()
-                          : !running_any(&BenchGroup::alone) &&
-                                int(running.size()) < std::max(1, jobs) &&
-                                !(groups[g].gpu && running_any(&BenchGroup::gpu));
+      const BenchGroup& group = groups[g];
+      const bool alone_on_gpus = group.alone && group.gpu && gpus > 1;
+      const bool any_alone = std::any_of(running.begin(), running.end(),
+                                         [&](const Worker& w) { return groups[w.group].alone; });
+      const bool all_alone_on_gpus = std::all_of(
+          running.begin(), running.end(),
+          [&](const Worker& w) { return groups[w.group].alone && groups[w.group].gpu; });
+      const int device = group.gpu ? free_gpu() : -1;
+      bool may_start = false;
+      if (alone_on_gpus) {
+        may_start = all_alone_on_gpus && device >= 0;
+      } else if (group.alone) {
+        may_start = running.empty();
+      } else {
+        may_start = !any_alone && int(running.size()) < jobs && (!group.gpu || device >= 0);
+      }
       if (may_start) {
         started[g] = true;
-        start_worker(g);
+        start_worker(g, device);
       }
-      if (groups[g].alone) break;  // the order of those that run alone is kept
+      // The order of those that run alone is kept (those on the GPUs among themselves).
+      if (group.alone && !(alone_on_gpus && may_start)) break;
     }
     while (next < groups.size() && started[next]) ++next;
     std::vector<pollfd> fds;
@@ -301,6 +355,7 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
     }
     for (std::size_t i = running.size(); i-- > 0;) {
       if (!ended[i]) continue;
+      if (running[i].device >= 0) gpu_busy[running[i].device] = false;
       end_worker(running[i]);
       running.erase(running.begin() + static_cast<std::ptrdiff_t>(i));
     }

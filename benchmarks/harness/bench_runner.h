@@ -8,8 +8,13 @@
 // or a run far past its time limit (killed), costs that run (recorded as "crash"), not
 // the benchmark. Groups that use several cores (ours, the cpu backend, the query tables)
 // run alone; OMPL's planners on one planning thread (PlannerChoice::single_threaded) run
-// up to `jobs` at a time, at most one of them on the GPU, whose checker answers small
+// up to `jobs` at a time, at most one of them on each GPU, whose checker answers small
 // calls on the cores the others leave (all cores less `jobs` - 1).
+//
+// Several GPUs: each worker of a planning group on the gpu backend gets one GPU of its
+// own (the lowest free one), named in its progress line and in its records' `device`.
+// Our planners on the gpu backend then run one per GPU at a time, side by side, each with
+// an equal share of the cores; the other groups that run alone still run alone.
 
 #include <functional>
 #include <iosfwd>
@@ -34,13 +39,24 @@ struct BenchGroup {
   int first_run = 0;     // the run number of its first run (a problem set's problem index)
   int runs = 0;          // runs planned (planning: config.runs; queries: config.repeat)
   bool alone = true;     // runs with no other group beside it
-  bool gpu = false;      // one planning thread and the GPU (at most one such at a time)
+  bool gpu = false;      // planning on the gpu backend (a GPU of its own)
   std::string label() const;
 };
 
 // The configuration's groups in the order they start: those that run alone first (scene
 // by scene), then the single-threaded ones (each as soon as it may).
 std::vector<BenchGroup> bench_groups(const BenchConfig& config);
+
+// How the workers share the machine.
+struct BenchResources {
+  int jobs = 1;     // single-threaded groups at a time (--jobs)
+  int gpus = 1;     // GPUs the gpu groups are spread over, devices 0 to gpus - 1
+  int threads = 0;  // host threads of every group (--threads); 0: as said above
+};
+
+// The CUDA devices this machine shows gplan-bench, counted in a child process (the
+// parent never initialises CUDA: its forked workers could not use it); 0 where none.
+int count_gpus_in_child();
 
 // Runs every group; returns all records, in the order of `groups` and run. Shows
 // progress on `progress` (a line per run) and hands each record to `on_record` as it
@@ -49,8 +65,8 @@ std::vector<BenchGroup> bench_groups(const BenchConfig& config);
 // `failed_paths_dir`.
 std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
                                           const std::vector<gplanner::Scene>& scenes,
-                                          const std::vector<BenchGroup>& groups, int jobs,
-                                          std::ostream& progress,
+                                          const std::vector<BenchGroup>& groups,
+                                          const BenchResources& resources, std::ostream& progress,
                                           const std::function<bool()>& should_stop,
                                           const std::function<void(const BenchRecord&)>& on_record,
                                           const std::string& failed_paths_dir);

@@ -198,9 +198,9 @@ BenchRecord run_ours(const gplanner::Scene& scene, const BenchConfig& config,
 
 }  // namespace
 
-void run_planning_group(const gplanner::Scene& scene, const std::string& scene_name,
-                        int first_run, const BenchConfig& config, const PlannerChoice& choice, int host_threads,
-                        const std::function<void(const BenchRecord&)>& emit,
+void run_planning_group(const gplanner::Scene& scene, const std::string& scene_name, int first_run,
+                        const BenchConfig& config, const PlannerChoice& choice, int host_threads,
+                        int device, const std::function<void(const BenchRecord&)>& emit,
                         const std::function<bool()>& should_stop,
                         const std::function<void(const std::string&)>& notice,
                         const std::string& failed_paths_dir) {
@@ -217,14 +217,16 @@ void run_planning_group(const gplanner::Scene& scene, const std::string& scene_n
     std::string fallback;
     gplanner::CheckerOptions options;
     options.threads = host_threads;
+    options.gpu.device = device;
     checker = gplanner::make_collision_checker(scene, choice.backend(), options, &fallback);
     if (checker->backend() != choice.backend())
       throw std::runtime_error(fallback_refusal(choice.label(), fallback));
   }
   if (choice.ours()) {
     std::string knn_notice;
-    neighbors = gplanner::make_neighbor_finder(
-        gplanner::make_metric(scene.space, scene.planner), checker->backend(), &knn_notice);
+    neighbors =
+        gplanner::make_neighbor_finder(gplanner::make_metric(scene.space, scene.planner),
+                                       checker->backend(), &knn_notice, checker->gpu_device());
     if (!knn_notice.empty()) notice(knn_notice);
   }
   double spent = 0;
@@ -252,6 +254,7 @@ void run_planning_group(const gplanner::Scene& scene, const std::string& scene_n
     record.checker = checker->backend() + (choice.sampled() ? "-sampled" : "");
     record.run = first_run + run;
     record.seed = seed;
+    record.device = checker->gpu_device();
     spent += std::isfinite(record.time_s) ? record.time_s : config.time_limit_s;
     emit(record);
   }

@@ -32,12 +32,12 @@ namespace gplan {
 // `should_stop` says so (it is also polled during a solve). `notice` receives what the
 // user should know once (the k-NN's fallback). A gpu checker that would run on the cpu
 // backend (no GPU here) throws: its times would be the cpu's under a gpu name.
-// host_threads: the host threads our checker may use (0: all cores). Records are named
+// host_threads: the host threads our checker may use (0: all cores); device: the CUDA
+// device of a gpu checker (and its record's `device`). Records are named
 // `scene_name` and numbered from `first_run` (a problem set: the problem's index).
-void run_planning_group(const gplanner::Scene& scene, const std::string& scene_name,
-                        int first_run, const BenchConfig& config, const PlannerChoice& choice,
-                        int host_threads,
-                        const std::function<void(const BenchRecord&)>& emit,
+void run_planning_group(const gplanner::Scene& scene, const std::string& scene_name, int first_run,
+                        const BenchConfig& config, const PlannerChoice& choice, int host_threads,
+                        int device, const std::function<void(const BenchRecord&)>& emit,
                         const std::function<bool()>& should_stop,
                         const std::function<void(const std::string&)>& notice,
                         const std::string& failed_paths_dir);

@@ -39,11 +39,13 @@ COLUMNS = ["experiment", "scene", "planner", "checker", "run", "seed", "status",
            "time_s", "simplify_time_s", "length", "simplified_length", "checks",
            "check_time_s", "graph_states", "memory_mb", "path_check", "work", "collisions",
            "sampling_s", "state_checks_s", "knn_s", "search_s", "edge_checks_s", "rounds",
-           "gpu_calls", "note"]
+           "gpu_calls", "device", "note"]
 STAGE_COLUMNS = ["sampling_s", "state_checks_s", "knn_s", "search_s", "edge_checks_s", "rounds"]
-# The columns of CSVs written before gpu_calls (issue 33's first runs), before the stage
-# columns (runs until issue 33), and before check_time_s (runs until issue 22).
-COLUMNS_BEFORE_GPU_CALLS = [c for c in COLUMNS if c != "gpu_calls"]
+# The columns of CSVs written before device (runs until issue 36), before gpu_calls (issue
+# 33's first runs), before the stage columns (runs until issue 33), and before
+# check_time_s (runs until issue 22).
+COLUMNS_BEFORE_DEVICE = [c for c in COLUMNS if c != "device"]
+COLUMNS_BEFORE_GPU_CALLS = [c for c in COLUMNS_BEFORE_DEVICE if c != "gpu_calls"]
 COLUMNS_BEFORE_STAGES = [c for c in COLUMNS_BEFORE_GPU_CALLS if c not in STAGE_COLUMNS]
 COLUMNS_BEFORE_CHECK_TIME = [c for c in COLUMNS_BEFORE_STAGES if c != "check_time_s"]
 QUERY_TABLES = {"collision-queries": "collision queries (milestone computation)",
@@ -87,8 +89,8 @@ def run_of(row):
 
 def read_runs(path):
     """The CSV's records as Runs; BadCsv on anything bench_record.cpp would not write."""
-    runs = read_csv(path, (COLUMNS, COLUMNS_BEFORE_GPU_CALLS, COLUMNS_BEFORE_STAGES,
-                           COLUMNS_BEFORE_CHECK_TIME),
+    runs = read_csv(path, (COLUMNS, COLUMNS_BEFORE_DEVICE, COLUMNS_BEFORE_GPU_CALLS,
+                           COLUMNS_BEFORE_STAGES, COLUMNS_BEFORE_CHECK_TIME),
                     "a gplan-bench CSV", run_of)
     if not runs:
         raise BadCsv("%s: holds no runs, nothing to plot" % path)

@@ -64,7 +64,8 @@
 #                 only, MBM_FIRST=N: the first N problems of each;
 #                 MBM_SHARD=I/N: every N-th problem from the I-th, gplan-bench's
 #                 --shard, for N GPUs or machines; MBM_OUT: the folder's name,
-#                 default mbm)
+#                 default mbm; MBM_PLANNERS="a@b c@d": those planners instead;
+#                 MBM_GPUS=N: gplan-bench --gpus N, default every GPU)
 #    Every call also writes OUT_DIR/machine.txt (GPU, driver, CPU, commit, date,
 #    tables). Progress goes to stderr. The exit status is 1 when a program failed (the
 #    other tables still run). Where one command may run at most 10 minutes, split the
@@ -295,10 +296,15 @@ for t in "${tables[@]}"; do
         [ -z "${MBM_FIRST:-}" ] || echo "  first: $MBM_FIRST"
         [ -z "${MBM_SCENARIOS:-}" ] || echo "  scenarios: [$(echo $MBM_SCENARIOS | sed 's/ /, /g')]"
         echo "  robot: {urdf: $panda/robot/panda.urdf, srdf: $panda/robot/panda.srdf, packages: {meshes: $panda/robot/meshes}}"
-        sed -n '/^planners:/,$p' benchmarks/config/motionbenchmaker_panda.yaml
+        if [ -n "${MBM_PLANNERS:-}" ]; then
+          echo "planners: [$(echo $MBM_PLANNERS | sed 's/ /, /g')]"
+          sed -n '/^planners:/,$p' benchmarks/config/motionbenchmaker_panda.yaml | sed 1d
+        else
+          sed -n '/^planners:/,$p' benchmarks/config/motionbenchmaker_panda.yaml
+        fi
       } > "$config"
       bench_config "$config" "$out/${MBM_OUT:-mbm}" --jobs $((cores > 5 ? cores - 4 : 1)) \
-        ${MBM_SHARD:+--shard "$MBM_SHARD"} || failed+=("$t")
+        ${MBM_SHARD:+--shard "$MBM_SHARD"} ${MBM_GPUS:+--gpus "$MBM_GPUS"} || failed+=("$t")
       ;;
   esac
 done

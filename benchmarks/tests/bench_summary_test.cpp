@@ -138,6 +138,18 @@ TEST(BenchRecord, CsvsOfEarlierVersionsAreStillRead) {
   EXPECT_DOUBLE_EQ(issue33[0].knn_s, 1);
   EXPECT_EQ(issue33[0].rounds, 4);
   EXPECT_EQ(issue33[0].gpu_calls, -1);
+  // Issue 33 to 35: gpu_calls, no device.
+  const std::string before_issue36 = folder.write(
+      "issue35.csv",
+      "experiment,scene,planner,checker,run,seed,status,solved,time_s,simplify_time_s,"
+      "length,simplified_length,checks,check_time_s,graph_states,memory_mb,path_check,work,"
+      "collisions,sampling_s,state_checks_s,knn_s,search_s,edge_checks_s,rounds,gpu_calls,"
+      "note\n"
+      "e,s,ours-auto,gpu,0,1,exact,1,0.05,0.01,10,9,300,,40,20,pass,,,0.5,0.25,1,2,3,4,11,\n");
+  const std::vector<BenchRecord> issue35 = read_bench_csv(before_issue36);
+  ASSERT_EQ(issue35.size(), 1u);
+  EXPECT_EQ(issue35[0].gpu_calls, 11);
+  EXPECT_EQ(issue35[0].device, -1);
   // And this version's: the check time and the stages written and read back.
   BenchRecord record = records[0];
   record.check_time_s = 1.25;
@@ -148,6 +160,7 @@ TEST(BenchRecord, CsvsOfEarlierVersionsAreStillRead) {
   record.edge_checks_s = 0.375;
   record.rounds = 3;
   record.gpu_calls = 17;
+  record.device = 3;
   const std::string now = folder.path() + "/now.csv";
   {
     std::ofstream out(now);
@@ -165,6 +178,7 @@ TEST(BenchRecord, CsvsOfEarlierVersionsAreStillRead) {
   EXPECT_DOUBLE_EQ(again[0].edge_checks_s, 0.375);
   EXPECT_EQ(again[0].rounds, 3);
   EXPECT_EQ(again[0].gpu_calls, 17);
+  EXPECT_EQ(again[0].device, 3);
   EXPECT_EQ(again[0].note, "");
   // A record of the old width under this version's header is refused, naming the line.
   {
@@ -175,7 +189,7 @@ TEST(BenchRecord, CsvsOfEarlierVersionsAreStillRead) {
     read_bench_csv(now);
     ADD_FAILURE() << "a short record was read";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("now.csv:3: 19 fields, not 27"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("now.csv:3: 19 fields, not 28"), std::string::npos)
         << e.what();
   }
 }

@@ -79,6 +79,7 @@ TEST(GplanBench, CiConfigurationPassesAgainstItsStoredBaselineAndAPlantedRegress
     EXPECT_GT(records[i].time_s, 0);
     EXPECT_GT(records[i].simplified_length, 0);
     EXPECT_GT(records[i].memory_mb, 0);
+    EXPECT_EQ(records[i].device, -1);  // cpu and fcl: no GPU
   }
   EXPECT_EQ(records[0].planner, "ours-lazyprm");
   EXPECT_EQ(records[0].checker, "cpu");

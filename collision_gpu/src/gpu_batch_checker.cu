@@ -9,13 +9,16 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <exception>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "gplanner/collision_gpu/model_view.h"
+#include "gplanner/common/gpu_device.h"
 #include "device_collision_model.cuh"
 #include "gplanner/common/cuda_memory.cuh"
 #include "traversals/balanced.cuh"
@@ -27,7 +30,10 @@ namespace gplanner {
 using cuda::DeviceBuffer;
 using traversals::check_cuda;
 
+// The model, buffers and statistics on one device; made, used and freed with that device
+// current (GpuDeviceScope).
 struct GpuBatchChecker::Impl {
+  int device = 0;
   GpuCheckerOptions options;
   FlatCollisionModel host;
   std::optional<DeviceCollisionModel> device_model;  // uploaded once a device is known
@@ -36,8 +42,6 @@ struct GpuBatchChecker::Impl {
   std::size_t memory_cap = 0;
   std::mutex mutex;     // one call on the device at a time: the buffers below are shared
   GpuCheckStats stats;  // the call in progress, under `mutex`
-  std::mutex stats_mutex;
-  GpuCheckStats last_stats;  // of the last call to finish, under `stats_mutex`
 
   DeviceBuffer<float> configurations;
   DeviceBuffer<float> clearances;
@@ -55,12 +59,10 @@ struct GpuBatchChecker::Impl {
   cuda::PinnedBuffer<traversals::BalancedState> pinned_state;
   std::optional<cuda::Event> start_event, stop_event;  // made with the model's upload
 
-  Impl(const CollisionModel& model, const GpuCheckerOptions& o) : options(o), host(model) {
-    int count = 0;
-    check_cuda(cudaGetDeviceCount(&count), "no usable GPU");
-    if (count == 0) throw std::runtime_error("no CUDA device found");
+  Impl(const CollisionModel& model, const GpuCheckerOptions& o, int d)
+      : device(d), options(o), host(model) {
     cudaDeviceProp properties{};
-    check_cuda(cudaGetDeviceProperties(&properties, 0), "cudaGetDeviceProperties");
+    check_cuda(cudaGetDeviceProperties(&properties, device), "cudaGetDeviceProperties");
     device_name = properties.name;
     std::size_t free_bytes = 0, total_bytes = 0;
     check_cuda(cudaMemGetInfo(&free_bytes, &total_bytes), "cudaMemGetInfo");
@@ -209,24 +211,110 @@ struct GpuBatchChecker::Impl {
   }
 };
 
-GpuBatchChecker::GpuBatchChecker(const CollisionModel& model, const GpuCheckerOptions& options)
-    : impl_(std::make_unique<Impl>(model, options)) {}
+namespace {
 
-GpuBatchChecker::~GpuBatchChecker() = default;
+// The devices a checker runs on: the one asked for, or every one with kAllDevices;
+// throws saying why where that cannot be.
+std::vector<int> devices_of(const GpuCheckerOptions& options) {
+  std::string reason;
+  const int count = gpu_device_count(&reason);
+  if (count == 0) throw std::runtime_error("no usable GPU: " + reason);
+  if (options.device == GpuCheckerOptions::kAllDevices) {
+    std::vector<int> all(count);
+    for (int d = 0; d < count; ++d) all[d] = d;
+    return all;
+  }
+  const GpuDevice device = query_gpu_device(options.device);
+  if (!device.available) throw std::runtime_error(device.reason);
+  return {options.device};
+}
+
+}  // namespace
+
+GpuBatchChecker::GpuBatchChecker(const CollisionModel& model, const GpuCheckerOptions& options) {
+  for (const int device : devices_of(options)) {
+    const GpuDeviceScope scope(device);
+    impls_.push_back(std::make_unique<Impl>(model, options, device));
+  }
+}
+
+GpuBatchChecker::~GpuBatchChecker() {
+  // Each device's buffers freed with that device current.
+  for (std::unique_ptr<Impl>& impl : impls_) {
+    const GpuDeviceScope scope(impl->device);
+    impl.reset();
+  }
+}
 
 void GpuBatchChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts,
                             const float* clearances) {
-  const std::lock_guard<std::mutex> lock(impl_->mutex);
-  impl_->check(configurations, n, verdicts, clearances);
-  const std::lock_guard<std::mutex> stats_lock(impl_->stats_mutex);
-  impl_->last_stats = impl_->stats;
+  const auto check_on = [&](Impl& impl, std::size_t first, std::size_t count) {
+    const std::lock_guard<std::mutex> lock(impl.mutex);
+    const GpuDeviceScope scope(impl.device);
+    const std::size_t links = clearances ? static_cast<std::size_t>(impl.view.link_count) : 0;
+    impl.check(configurations + first * impl.view.width, count, verdicts + first,
+               clearances ? clearances + first * links : nullptr);
+    return impl.stats;
+  };
+  if (impls_.size() == 1 || n < kSplitBatchesFrom) {
+    const GpuCheckStats stats = check_on(*impls_.front(), 0, n);
+    const std::lock_guard<std::mutex> lock(stats_mutex_);
+    last_stats_ = stats;
+    return;
+  }
+  // One contiguous part per device, each checked on a thread of its own (a call waits
+  // for its device); the first part on the calling thread.
+  const std::size_t parts = impls_.size();
+  std::vector<GpuCheckStats> stats(parts);
+  std::vector<std::exception_ptr> errors(parts);
+  const auto part = [&](std::size_t p) {
+    const std::size_t first = n * p / parts, end = n * (p + 1) / parts;
+    try {
+      stats[p] = check_on(*impls_[p], first, end - first);
+    } catch (...) {
+      errors[p] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> threads;
+  for (std::size_t p = 1; p < parts; ++p) threads.emplace_back(part, p);
+  part(0);
+  for (std::thread& thread : threads) thread.join();
+  for (const std::exception_ptr& error : errors)
+    if (error) std::rethrow_exception(error);
+  GpuCheckStats whole = stats.front();
+  for (std::size_t p = 1; p < parts; ++p) {
+    whole.milliseconds = std::max(whole.milliseconds, stats[p].milliseconds);
+    whole.chunks += stats[p].chunks;
+    whole.rounds += stats[p].rounds;
+    whole.finished_tasks += stats[p].finished_tasks;
+    whole.jobs += stats[p].jobs;
+    whole.bv_tests += stats[p].bv_tests;
+    whole.triangle_tests += stats[p].triangle_tests;
+  }
+  const std::lock_guard<std::mutex> lock(stats_mutex_);
+  last_stats_ = whole;
 }
 
 GpuCheckStats GpuBatchChecker::last_stats() const {
-  const std::lock_guard<std::mutex> lock(impl_->stats_mutex);
-  return impl_->last_stats;
+  const std::lock_guard<std::mutex> lock(stats_mutex_);
+  return last_stats_;
 }
 
-std::string GpuBatchChecker::device_name() const { return impl_->device_name; }
+std::string GpuBatchChecker::device_name() const {
+  const std::string& name = impls_.front()->device_name;
+  if (impls_.size() == 1) return name;
+  bool same = true;
+  for (const auto& impl : impls_) same = same && impl->device_name == name;
+  if (same) return std::to_string(impls_.size()) + " x " + name;
+  std::string names;
+  for (const auto& impl : impls_) names += (names.empty() ? "" : ", ") + impl->device_name;
+  return names;
+}
+
+std::vector<int> GpuBatchChecker::devices() const {
+  std::vector<int> devices;
+  for (const auto& impl : impls_) devices.push_back(impl->device);
+  return devices;
+}
 
 }  // namespace gplanner

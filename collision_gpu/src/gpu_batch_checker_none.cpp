@@ -5,9 +5,7 @@
 
 namespace gplanner {
 
-struct GpuBatchChecker::Impl {
-  GpuCheckStats stats;
-};
+struct GpuBatchChecker::Impl {};
 
 GpuBatchChecker::GpuBatchChecker(const CollisionModel&, const GpuCheckerOptions&) {
   throw std::runtime_error("gplanner was built without CUDA");
@@ -19,8 +17,10 @@ void GpuBatchChecker::check(const float*, std::size_t, std::uint8_t*, const floa
   throw std::runtime_error("gplanner was built without CUDA");
 }
 
-GpuCheckStats GpuBatchChecker::last_stats() const { return impl_->stats; }
+GpuCheckStats GpuBatchChecker::last_stats() const { return last_stats_; }
 
 std::string GpuBatchChecker::device_name() const { return ""; }
+
+std::vector<int> GpuBatchChecker::devices() const { return {}; }
 
 }  // namespace gplanner

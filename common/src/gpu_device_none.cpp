@@ -2,10 +2,23 @@
 
 namespace gplanner {
 
-GpuDevice query_gpu_device() {
+namespace {
+constexpr const char* kNoCuda = "gplanner was built without CUDA";
+}
+
+GpuDevice query_gpu_device(int index) {
   GpuDevice device;
-  device.reason = "gplanner was built without CUDA";
+  device.index = index;
+  device.reason = kNoCuda;
   return device;
 }
+
+int gpu_device_count(std::string* reason) {
+  if (reason) *reason = kNoCuda;
+  return 0;
+}
+
+GpuDeviceScope::GpuDeviceScope(int) {}
+GpuDeviceScope::~GpuDeviceScope() = default;
 
 }  // namespace gplanner

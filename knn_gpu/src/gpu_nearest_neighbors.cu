@@ -46,6 +46,7 @@ bool gpu_nearest_neighbors_available(std::string* reason) {
 }
 
 struct GpuNearestNeighbors::Impl {
+  int device = 0;
   std::string device_name;
   GpuKnnStats stats;
   // Owned, made once a device is known to be there; the handles below are theirs.
@@ -72,13 +73,8 @@ struct GpuNearestNeighbors::Impl {
   PinnedBuffer<float> h_distances;              // shape [n, k]
   PinnedBuffer<unsigned long long> h_counters;  // shape [3]
 
-  Impl() {
-    const GpuDevice device = query_gpu_device();
-    if (!device.available) {
-      throw std::runtime_error("GPU k-NN: no usable GPU (" + device.reason +
-                               "); use all_nearest_neighbors_cpu()");
-    }
-    device_name = device.name;
+  // Made with `index` the current device (GpuDeviceScope).
+  Impl(int index, const std::string& name) : device(index), device_name(name) {
     stream = owned_stream.emplace().get();
     int e = 0;
     for (cudaEvent_t* event : {&start, &search_start, &search_stop, &stop})
@@ -243,13 +239,25 @@ struct GpuNearestNeighbors::Impl {
   }
 };
 
-GpuNearestNeighbors::GpuNearestNeighbors() : impl_(std::make_unique<Impl>()) {}
+GpuNearestNeighbors::GpuNearestNeighbors(int device) {
+  const GpuDevice gpu = query_gpu_device(device);
+  if (!gpu.available) {
+    throw std::runtime_error("GPU k-NN: no usable GPU (" + gpu.reason +
+                             "); use all_nearest_neighbors_cpu()");
+  }
+  const GpuDeviceScope scope(device);
+  impl_ = std::make_unique<Impl>(device, gpu.name);
+}
 
-GpuNearestNeighbors::~GpuNearestNeighbors() = default;
+GpuNearestNeighbors::~GpuNearestNeighbors() {
+  const GpuDeviceScope scope(impl_->device);  // its buffers freed on its device
+  impl_.reset();
+}
 
 NeighborTable GpuNearestNeighbors::all_nearest(const ConfigurationMetric& metric,
                                                const float* points, std::size_t n, int k,
                                                float radius) {
+  const GpuDeviceScope scope(impl_->device);
   return impl_->all_nearest(metric, points, n, k, radius);
 }
 

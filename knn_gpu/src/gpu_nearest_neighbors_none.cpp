@@ -14,7 +14,7 @@ struct GpuNearestNeighbors::Impl {
   GpuKnnStats stats;
 };
 
-GpuNearestNeighbors::GpuNearestNeighbors() {
+GpuNearestNeighbors::GpuNearestNeighbors(int) {
   throw std::runtime_error(
       "GPU k-NN: gplanner was built without CUDA; use all_nearest_neighbors_cpu()");
 }

@@ -27,19 +27,22 @@ __all__ = ["Checker", "InputError", "PlanResult", "Scene", "__version__", "load_
            "load_moveit_scene", "motionbenchmaker_problems", "plan"]
 
 
-def plan(scene, planner="auto", backend="gpu", seed=None, time_limit=None, milestones=None):
+def plan(scene, planner="auto", backend="gpu", seed=None, time_limit=None, milestones=None,
+         device=0):
     """Plans the scene's start to goal on a new checker of `backend` (see Checker.plan).
 
     A checker is built for the call (its BVHs, and on the GPU its measured routing): to
-    plan several times, make one with Scene.checker and call its plan().
+    plan several times, make one with Scene.checker and call its plan(). `device`: the
+    gpu backend's CUDA device (0, 1, ... or "all"), as Scene.checker's.
     """
-    return scene.checker(backend).plan(planner=planner, seed=seed, time_limit=time_limit,
-                                       milestones=milestones)
+    return scene.checker(backend, device=device).plan(planner=planner, seed=seed,
+                                                      time_limit=time_limit,
+                                                      milestones=milestones)
 
 
 def _scene_plan(self, planner="auto", backend="gpu", seed=None, time_limit=None,
-                milestones=None):
-    return plan(self, planner, backend, seed, time_limit, milestones)
+                milestones=None, device=0):
+    return plan(self, planner, backend, seed, time_limit, milestones, device)
 
 
 _scene_plan.__doc__ = plan.__doc__

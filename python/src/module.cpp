@@ -16,6 +16,7 @@
 #include "arrays.h"
 #include "gplanner/planner/checkers/checker_factory.h"
 #include "gplanner/planner/checkers/collision_checker.h"
+#include "gplanner/planner/checkers/gpu_checker.h"
 #include "gplanner/planner/planning/certified_motions.h"
 #include "gplanner/planner/planning/local_planner.h"
 #include "gplanner/planner/planning/neighbor_finder.h"
@@ -59,10 +60,11 @@ struct PyPlanResult {
 
 class PyChecker {
  public:
-  PyChecker(std::shared_ptr<const Scene> scene, const std::string& backend, int threads)
+  PyChecker(std::shared_ptr<const Scene> scene, const std::string& backend, int threads, int device)
       : scene_(std::move(scene)), options_(plan_options(*scene_)) {
     CheckerOptions options;
     options.threads = threads;
+    options.gpu.device = device;
     {
       py::gil_scoped_release release;  // builds BVHs and times the GPU's calls
       checker_ = make_collision_checker(*scene_, backend, options, &notice_);
@@ -74,6 +76,10 @@ class PyChecker {
   std::string backend() const { return checker_->backend(); }
   const std::string& notice() const { return notice_; }
   std::size_t device_calls() const { return checker_->device_calls(); }
+  std::vector<int> devices() const {
+    const auto* gpu = dynamic_cast<const GpuChecker*>(checker_.get());
+    return gpu ? gpu->devices() : std::vector<int>{};
+  }
 
   py::array_t<bool> check(py::handle q) {
     const Rows rows = rows_of(q, scene_->space.width(), "q");
@@ -167,7 +173,8 @@ class PyChecker {
       py::gil_scoped_release release;
       check_start_and_goal(*scene_, checker_.get());
       const std::unique_ptr<NeighborFinder> neighbors =
-          make_neighbor_finder(make_metric(scene_->space, scene_->planner), checker_->backend());
+          make_neighbor_finder(make_metric(scene_->space, scene_->planner), checker_->backend(),
+                               nullptr, checker_->gpu_device());
       knn = neighbors->device();
       ChosenPlanner chosen(*scene_, checker_.get(), neighbors.get(), kind,
                            /*with_roadmap=*/!milestones.is_none(), options);
@@ -237,6 +244,18 @@ std::shared_ptr<const Scene> load(const std::string& path) {
   return std::make_shared<const Scene>(load_scene(path));
 }
 
+// Scene.checker's device: a CUDA device number, or "all" (GpuCheckerOptions::kAllDevices).
+int device_number(py::handle device) {
+  if (py::isinstance<py::str>(device) && device.cast<std::string>() == "all")
+    return GpuCheckerOptions::kAllDevices;
+  if (py::isinstance<py::int_>(device) && !py::isinstance<py::bool_>(device)) {
+    const long long d = device.cast<long long>();
+    if (d >= 0 && d < 10000) return static_cast<int>(d);
+  }
+  throw py::value_error("device: a CUDA device number (0, 1, ...) or \"all\", not " +
+                        py::repr(device).cast<std::string>());
+}
+
 py::array_t<float> sample(const Scene& scene, long long n, unsigned long long seed) {
   if (n < 0) throw py::value_error("n: a count of configurations (0 or more) expected");
   const int width = scene.space.width();
@@ -270,10 +289,11 @@ PYBIND11_MODULE(_core, m) {
       .def("sample", &sample, py::arg("n"), py::arg("seed") = 1)
       .def(
           "checker",
-          [](const std::shared_ptr<Scene>& s, const std::string& backend, int threads) {
-            return std::make_unique<PyChecker>(s, backend, threads);
+          [](const std::shared_ptr<Scene>& s, const std::string& backend, int threads,
+             py::handle device) {
+            return std::make_unique<PyChecker>(s, backend, threads, device_number(device));
           },
-          py::arg("backend") = "gpu", py::arg("threads") = 0)
+          py::arg("backend") = "gpu", py::arg("threads") = 0, py::arg("device") = 0)
       .def(
           "recheck",
           [](const Scene& s, py::handle path, double refinement) {
@@ -291,6 +311,7 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("backend", &PyChecker::backend)
       .def_property_readonly("notice", &PyChecker::notice)
       .def_property_readonly("device_calls", &PyChecker::device_calls)
+      .def_property_readonly("devices", &PyChecker::devices)
       .def("check", &PyChecker::check, py::arg("q"))
       .def("_check_seconds", &PyChecker::check_seconds, py::arg("q"), py::arg("repeat"))
       .def("check_motions", &PyChecker::check_motions, py::arg("a"), py::arg("b"),

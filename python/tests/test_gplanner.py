@@ -243,6 +243,28 @@ def test_gpu_checks_equal_the_cpu_backends_within_the_band():
     assert result.stats["gpu_calls"]["total"] > 0
 
 
+def test_the_device_is_chosen_per_checker_and_a_bad_one_is_said():
+    scene = gplanner.load_scene(str(SCENES / "pr2_base_arm.yaml"))
+    for bad in ("1", -1, True, 1.0, "every"):
+        with pytest.raises(ValueError, match="device"):
+            scene.checker("gpu", device=bad)
+    assert scene.checker("cpu").devices == []
+    first = scene.checker("gpu", device=0)
+    if first.backend != "gpu":  # no GPU: the cpu backend, whatever the device, and said
+        for device in (0, 3, "all"):
+            checker = scene.checker("gpu", device=device)
+            assert checker.backend == "cpu" and checker.devices == []
+            assert "no GPU" in checker.notice
+        return
+    assert first.devices == [0]
+    q = scene.sample(50_000, seed=4)
+    every = scene.checker("gpu", device="all")
+    assert every.devices == list(range(len(every.devices))) and len(every.devices) >= 1
+    assert every.check(q).tolist() == first.check(q).tolist()
+    with pytest.raises(ValueError, match="sees %d CUDA device" % len(every.devices)):
+        scene.checker("gpu", device=len(every.devices))
+
+
 # --- the example ---------------------------------------------------------------------
 
 def test_the_example_checks_plans_and_plots(shared_data, tmp_path, monkeypatch, capsys):

@@ -1,5 +1,6 @@
 #include "gplanner/planner/checkers/checker_factory.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "gplanner/common/gpu_device.h"
@@ -16,9 +17,14 @@ std::unique_ptr<CollisionChecker> make_collision_checker(const Scene& scene,
                                                          const CheckerOptions& options,
                                                          std::string* notice) {
   if (backend == "gpu") {
-    const GpuDevice device = query_gpu_device();
-    if (device.available) return std::make_unique<GpuChecker>(scene, options.gpu, options.threads);
-    if (notice) *notice = "no GPU (" + device.reason + "): the cpu backend runs instead";
+    // No GPU at all: the cpu backend, said. A device that is not there while others are
+    // (a typo, or CUDA_VISIBLE_DEVICES) is the caller's error.
+    const int device = options.gpu.device;
+    const GpuDevice gpu = query_gpu_device(std::max(device, 0));
+    if (gpu.count > 0 && device != GpuCheckerOptions::kAllDevices && !gpu.available)
+      throw std::invalid_argument("the gpu backend: " + gpu.reason);
+    if (gpu.available) return std::make_unique<GpuChecker>(scene, options.gpu, options.threads);
+    if (notice) *notice = "no GPU (" + gpu.reason + "): the cpu backend runs instead";
     return std::make_unique<CpuChecker>(scene, options.threads);
   }
   if (backend == "fcl") return std::make_unique<FclChecker>(scene, options.threads);

@@ -63,7 +63,8 @@ RoadmapOmplPlanner::RoadmapOmplPlanner(const ob::SpaceInformationPtr& si, const 
   // A termination condition's deadline is unknown: slices short enough that one of
   // OMPL's time limits is kept within about 0.1 s, long enough for large batches.
   options_.slice_s = 0.05;
-  neighbors_ = make_neighbor_finder(make_metric(scene.space, scene.planner), checker->backend());
+  neighbors_ = make_neighbor_finder(make_metric(scene.space, scene.planner), checker->backend(),
+                                    nullptr, checker->gpu_device());
   declare_params();
   // OMPL's PRM's names first, then ours.
   addPlannerProgressProperty("iterations INTEGER", [this] { return std::to_string(rounds_); });

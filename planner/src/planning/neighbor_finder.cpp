@@ -185,7 +185,7 @@ int degrees_of_freedom(const ConfigurationMetric& metric) {
 // benchmarks/history/issue33_fewer_gpu_calls_500f1e5.md).
 class GpuNeighborFinder : public NeighborFinder {
  public:
-  explicit GpuNeighborFinder(const ConfigurationMetric& metric) : metric_(metric) {
+  GpuNeighborFinder(const ConfigurationMetric& metric, int device) : metric_(metric), gpu_(device) {
     constexpr std::size_t kWarmPoints = 4096;
     constexpr int kWarmNeighbors = 16;
     const int width = metric.width();
@@ -220,11 +220,11 @@ class GpuNeighborFinder : public NeighborFinder {
 
 std::unique_ptr<NeighborFinder> make_neighbor_finder(const ConfigurationMetric& metric,
                                                      const std::string& backend,
-                                                     std::string* notice) {
+                                                     std::string* notice, int device) {
   if (backend == "gpu") {
     std::string reason;
     if (gpu_nearest_neighbors_available(&reason))
-      return std::make_unique<GpuNeighborFinder>(metric);
+      return std::make_unique<GpuNeighborFinder>(metric, std::max(device, 0));
     if (notice) *notice = "k-NN runs on the CPU: " + reason;
   }
   if (degrees_of_freedom(metric) > kBruteForceAboveDof)

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -43,7 +44,18 @@ struct GpuCheckerOptions {
   // the crossovers measured on the scene when the checker is made; 0: every call on the
   // GPU (what tests of the kernels and the query tables ask for).
   std::size_t host_calls_up_to = kAuto;
+  // The CUDA device the checker runs on, numbered among those this process sees
+  // (CUDA_VISIBLE_DEVICES). kAllDevices: every one the process sees, the model on each;
+  // a batch of at least kSplitBatchesFrom configurations is then cut into one part per
+  // device, checked at the same time, and smaller ones go to the first device.
+  static constexpr int kAllDevices = -1;
+  int device = 0;
 };
+
+// Batches of at least this many configurations are split across the devices of a
+// checker on kAllDevices: below it, a second device's call saves less than it costs (a
+// GPU call of thousands of configurations costs about its fixed cost; docs/design.md).
+inline constexpr std::size_t kSplitBatchesFrom = 32768;
 
 // What a check() did.
 struct GpuCheckStats {
@@ -61,7 +73,8 @@ struct GpuCheckStats {
 
 class GpuBatchChecker {
  public:
-  // Uploads the model once. Throws std::runtime_error when no GPU can be used (or the
+  // Uploads the model once (on every device with kAllDevices). Throws
+  // std::runtime_error when no GPU can be used, or not the device asked for (or the
   // library was built without CUDA), saying why.
   GpuBatchChecker(const CollisionModel& model, const GpuCheckerOptions& options);
   ~GpuBatchChecker();
@@ -70,18 +83,26 @@ class GpuBatchChecker {
 
   // configurations: host, shape [n, width]; verdicts: host, shape [n]. Calls from any
   // number of threads are safe and take turns: the device work of one call (its chunk
-  // buffers, work queues and counters are the checker's own) runs under a lock.
+  // buffers, work queues and counters are the checker's own) runs under a lock, one per
+  // device.
   // clearances: host, as CpuBatchChecker::check's.
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts,
              const float* clearances = nullptr);
 
   // Of the last check() to finish, whole (a copy: other threads may be checking).
+  // With several devices: the parts' chunks, tests and jobs added up, the longest
+  // part's milliseconds.
   GpuCheckStats last_stats() const;
+  // The device's name; with several, each once with how many ("2 x NVIDIA H100 ...").
   std::string device_name() const;
+  // The devices it runs on (one, or every one the process sees), first to last.
+  std::vector<int> devices() const;
 
  private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  struct Impl;  // the model and buffers on one device
+  std::vector<std::unique_ptr<Impl>> impls_;
+  mutable std::mutex stats_mutex_;
+  GpuCheckStats last_stats_;  // of the last call to finish, whole
 };
 
 }  // namespace gplanner

@@ -76,9 +76,10 @@ struct GpuKnnStats {
 // configuration_distance() itself, so results equal the CPU reference up to ties.
 class GpuNearestNeighbors {
  public:
-  // Throws std::runtime_error when no GPU can be used (or the library was built without
-  // CUDA), saying why.
-  GpuNearestNeighbors();
+  // On CUDA device `device` (numbered among those the process sees). Throws
+  // std::runtime_error when no GPU can be used, or not that one (or the library was
+  // built without CUDA), saying why.
+  explicit GpuNearestNeighbors(int device = 0);
   ~GpuNearestNeighbors();
   GpuNearestNeighbors(const GpuNearestNeighbors&) = delete;
   GpuNearestNeighbors& operator=(const GpuNearestNeighbors&) = delete;

@@ -12,7 +12,7 @@ namespace gplanner {
 
 struct CheckerOptions {
   int threads = 0;        // host threads for CPU backends; 0: all cores
-  GpuCheckerOptions gpu;  // traversal and memory cap of the gpu backend
+  GpuCheckerOptions gpu;  // traversal, memory cap and device of the gpu backend
 };
 
 // Names accepted by make_collision_checker.
@@ -21,7 +21,9 @@ std::vector<std::string> collision_backends();
 // The checker for `backend`; throws std::invalid_argument naming the known backends
 // when the name is unknown. `scene` must outlive the checker. When `gpu` is asked for
 // and no GPU can be used, the cpu backend runs instead and `notice` (when given) says
-// why in one line; the checker's backend() always names what runs.
+// why in one line; the checker's backend() always names what runs. A GPU device
+// (options.gpu.device) that the process does not see, where it sees others, throws
+// std::invalid_argument saying which it sees.
 std::unique_ptr<CollisionChecker> make_collision_checker(const Scene& scene,
                                                          const std::string& backend,
                                                          const CheckerOptions& options = {},

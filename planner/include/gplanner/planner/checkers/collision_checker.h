@@ -65,6 +65,9 @@ class CollisionChecker {
   // gpu backend answers on the host is none): what a planner reports per stage, as the
   // difference before and after it. The CPU backends: 0.
   virtual std::size_t device_calls() const { return 0; }
+  // The CUDA device its GPU calls run on (the first of several), -1 for the CPU
+  // backends: where a planner puts its other GPU work (the k-NN search).
+  virtual int gpu_device() const { return -1; }
   bool in_collision(const float* configuration) {
     std::uint8_t verdict = 0;
     check(configuration, 1, &verdict);

@@ -60,10 +60,12 @@ class GpuChecker : public CollisionChecker {
   std::size_t cheap_calls_up_to() const override { return routing_.host_threads_up_to; }
   CollisionChecker* host_checker() override { return &host_only_; }
   std::size_t device_calls() const override { return device_calls_.load(); }
+  int gpu_device() const override { return gpu_.devices().front(); }
 
   // Of the last check() on the GPU to finish (calls answered on the host leave it as is).
   GpuCheckStats last_stats() const { return gpu_.last_stats(); }
   std::string device_name() const { return gpu_.device_name(); }
+  std::vector<int> devices() const { return gpu_.devices(); }
   Traversal traversal() const { return traversal_; }
   const HostCallRouting& routing() const { return routing_; }
 

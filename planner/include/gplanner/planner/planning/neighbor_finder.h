@@ -53,10 +53,11 @@ class NeighborFinder {
   std::function<bool()> stop_;
 };
 
-// The GPU finder for backend "gpu" when a GPU can be used, else the CPU one (`notice`,
+// The GPU finder for backend "gpu" when a GPU can be used (on CUDA device `device`: the
+// checker's, CollisionChecker::gpu_device, where it is one), else the CPU one (`notice`,
 // when given, then says why in one line).
 std::unique_ptr<NeighborFinder> make_neighbor_finder(const ConfigurationMetric& metric,
                                                      const std::string& backend,
-                                                     std::string* notice = nullptr);
+                                                     std::string* notice = nullptr, int device = 0);
 
 }  // namespace gplanner

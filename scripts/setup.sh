@@ -7,7 +7,8 @@ cd "$(dirname "$0")/.."
 
 packages=(g++ cmake make libeigen3-dev libyaml-cpp-dev liburdfdom-dev libtinyxml2-dev
           libassimp-dev libfcl-dev libccd-dev libgtest-dev libompl-dev ompl-demos nlohmann-json3-dev
-          python3-matplotlib python3-dev python3-numpy pybind11-dev python3-pytest chromium)
+          python3-matplotlib python3-dev python3-numpy pybind11-dev python3-pytest chromium
+          python3-distributed)
 # The viewer (gplan plan --html) is bundled with npm at build time: Debian's where the
 # machine has no Node.js of its own.
 command -v npm >/dev/null || packages+=(nodejs npm)

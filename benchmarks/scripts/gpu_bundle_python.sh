@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
-# Adds Debian's Python 3 with numpy and pytest, and the built module (build/python), to a
-# GPU bundle made by ../shared/tools/gpu-bundle (default .gpu), for the GPU machine,
-# which has none of them: the interpreter and its standard library (tests, Tk, IDLE and
-# the like left out), numpy and pytest from dist-packages, and the libraries their
-# extensions load (into the bundle's lib/, which its run wrapper searches).
+# Adds Debian's Python 3 with numpy, pytest and Dask distributed, and the built module
+# (build/python), to a GPU bundle made by ../shared/tools/gpu-bundle (default .gpu), for
+# the GPU machine, which has none of them: the interpreter and its standard library
+# (tests, Tk, IDLE and the like left out), numpy, pytest, dask and distributed (with the
+# packages they import) from dist-packages, and the libraries their extensions load
+# (into the bundle's lib/, which its run wrapper searches).
 #
 #   benchmarks/scripts/gpu_bundle_python.sh [BUNDLE] [BUILD_DIR]
-#   then on the GPU machine: BUNDLE/python/run -m pytest python/tests   (or any script)
+#   then on the GPU machine: BUNDLE/python/run -m pytest python/tests   (or any script;
+#   BUNDLE/python/run -m gplanner.distributed bench CONFIG -o OUT --local-gpus)
 set -euo pipefail
 out=${1:-.gpu}
 build=${2:-build}
@@ -23,8 +25,22 @@ tar -C /usr/lib -cf - --exclude=__pycache__ --exclude="python$version/test" \
     --exclude="lib-dynload/_dbm*" --exclude="lib-dynload/_gdbm*" "python$version" |
   tar -C "$home/lib" -xf -
 site=/usr/lib/python3/dist-packages
-for p in numpy _pytest pytest pluggy iniconfig packaging py.py attr attrs; do
-  [ -e "$site/$p" ] && tar -C "$site" -cf - --exclude=__pycache__ --exclude=tests "$p" | tar -C "$home/packages" -xf -
+# numpy and pytest; dask and distributed (gplanner.distributed, docs/distributed.md) and
+# what they import (Debian's python3-distributed's dependencies, pandas and lz4 left out:
+# optional).
+for p in numpy _pytest pytest pluggy iniconfig packaging py.py attr attrs \
+         dask distributed cloudpickle toolz tlz tornado msgpack psutil sortedcontainers \
+         tblib zict heapdict.py yaml _yaml click jinja2 markupsafe locket partd fsspec urllib3; do
+  [ -e "$site/$p" ] && tar -C "$site" -cf - --exclude=__pycache__ --exclude=tests --exclude=test "$p" |
+    tar -C "$home/packages" -xf -
+done
+# Their metadata (distributed's and dask's version, the versions the cluster compares).
+for d in numpy pytest pluggy iniconfig packaging py attrs dask distributed cloudpickle toolz \
+         tornado msgpack psutil sortedcontainers tblib zict HeapDict PyYAML click Jinja2 \
+         MarkupSafe locket partd fsspec urllib3; do
+  for m in "$site/$d"-*.egg-info "$site/$d"-*.dist-info; do
+    [ -e "$m" ] && cp -r "$m" "$home/packages/"
+  done
 done
 cp -r "$build/python/gplanner" "$home/packages/"
 cp -L "/usr/bin/python$version" "$out/bin/python3"
@@ -35,7 +51,8 @@ rm -f "$out"/lib/libcuda.so* "$out"/lib/libnvidia-*
 strip --strip-unneeded "$out"/bin/python3 "$out"/lib/*.so* 2>/dev/null || true
 cat > "$home/run" <<'RUN'
 #!/usr/bin/env bash
-# Debian's Python from the bundle: its standard library, numpy, pytest and gplanner.
+# Debian's Python from the bundle: its standard library, numpy, pytest, dask, distributed
+# and gplanner.
 here=$(cd "$(dirname "$0")" && pwd)
 export PYTHONHOME=$here PYTHONPATH=$here/packages${PYTHONPATH:+:$PYTHONPATH}
 export PYTHONDONTWRITEBYTECODE=1

@@ -41,10 +41,10 @@ void send(int fd, char type, const std::string& payload) {
   }
 }
 
-[[noreturn]] void run_worker(int fd, const BenchConfig& config, const gplanner::Scene& scene,
-                             const BenchGroup& group, int host_threads, int device,
-                             const std::string& failed_paths_dir,
-                             const std::function<bool()>& should_stop) {
+// Runs one group in a worker: its records, notices, and D when it is done.
+void run_group(int fd, const BenchConfig& config, const gplanner::Scene& scene,
+               const BenchGroup& group, int host_threads, int device,
+               const std::string& failed_paths_dir, const std::function<bool()>& should_stop) {
   const auto emit = [fd](const BenchRecord& record) {
     std::ostringstream line;
     write_bench_csv_line(line, record);
@@ -77,6 +77,30 @@ void send(int fd, char type, const std::string& payload) {
     emit(record);
   }
   send(fd, 'D', "");
+}
+
+// A worker that runs groups one after another as gplan hands them over (a group's index
+// and a newline on `commands`), keeping its CUDA context between them; it ends when gplan
+// closes `commands`.
+[[noreturn]] void serve_groups(int fd, int commands, const BenchConfig& config,
+                               const std::vector<gplanner::Scene>& scenes,
+                               const std::vector<BenchGroup>& groups, int host_threads, int device,
+                               const std::string& failed_paths_dir,
+                               const std::function<bool()>& should_stop) {
+  std::string line;
+  for (char c;;) {
+    const ssize_t n = ::read(commands, &c, 1);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;  // gplan closed it: no more groups
+    if (c != '\n') {
+      line += c;
+      continue;
+    }
+    const std::size_t g = std::stoul(line);
+    line.clear();
+    run_group(fd, config, scenes[groups[g].scene], groups[g], host_threads, device,
+              failed_paths_dir, should_stop);
+  }
   ::close(fd);
   _exit(0);
 }
@@ -84,8 +108,13 @@ void send(int fd, char type, const std::string& payload) {
 struct Worker {
   pid_t pid = -1;
   int fd = -1;
-  std::size_t group = 0;
-  int device = -1;  // the GPU it was given (-1: none)
+  std::size_t group = 0;  // the group it runs (a serving worker: its last)
+  int device = -1;        // the GPU it was given (-1: none)
+  int commands = -1;      // a serving worker's command pipe (-1: a worker of one group)
+  bool idle = false;      // a serving worker between groups
+  // A serving worker whose group ended in an error (a GPU left in a bad state, say) is
+  // given no other group: a new worker takes the next.
+  bool failed = false;
   std::string buffer;
   int records = 0;
   bool done = false;
@@ -207,17 +236,50 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
     return -1;
   };
 
+  // Our groups on the gpu backend go to serving workers, one per GPU, which keep their
+  // CUDA context from group to group (its start costs a few tenths of a second, more than
+  // an easy problem's plan); every other group to a worker of its own.
+  const auto serves = [&](const BenchGroup& group) { return group.alone && group.gpu; };
+  const auto say_started = [&](std::size_t g, int device) {
+    progress << "[" << g + 1 << "/" << groups.size() << "] " << groups[g].label() << ": "
+             << groups[g].runs << (config.kind == "planning" ? " runs" : " timed calls");
+    if (device >= 0 && gpus > 1) progress << " on GPU " << device;
+    progress << "\n";
+  };
+  const auto hand_over = [&](Worker& worker, std::size_t g) {
+    const std::string line = std::to_string(g) + "\n";
+    if (::write(worker.commands, line.data(), line.size()) != static_cast<ssize_t>(line.size()))
+      throw std::runtime_error(std::string("a worker's command pipe: ") + std::strerror(errno));
+    worker.group = g;
+    worker.idle = false;
+    worker.done = false;
+    worker.records = 0;
+    worker.last = Clock::now();
+    say_started(g, worker.device);
+  };
   const auto start_worker = [&](std::size_t g, int device) {
-    int fds[2];
-    if (::pipe(fds) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
+    const bool serving = serves(groups[g]);
+    int fds[2], commands[2] = {-1, -1};
+    if (::pipe(fds) != 0 || (serving && ::pipe(commands) != 0))
+      throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
     progress.flush();
     const pid_t pid = ::fork();
     if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
     if (pid == 0) {
       ::close(fds[0]);
-      for (const Worker& other : running) ::close(other.fd);
-      run_worker(fds[1], config, scenes[groups[g].scene], groups[g], host_threads_of(groups[g]),
-                 std::max(device, 0), failed_paths_dir, should_stop);
+      for (const Worker& other : running) {
+        ::close(other.fd);
+        if (other.commands >= 0) ::close(other.commands);
+      }
+      if (serving) {
+        ::close(commands[1]);
+        serve_groups(fds[1], commands[0], config, scenes, groups, host_threads_of(groups[g]),
+                     std::max(device, 0), failed_paths_dir, should_stop);
+      }
+      run_group(fds[1], config, scenes[groups[g].scene], groups[g], host_threads_of(groups[g]),
+                std::max(device, 0), failed_paths_dir, should_stop);
+      ::close(fds[1]);
+      _exit(0);
     }
     ::close(fds[1]);
     Worker worker;
@@ -225,12 +287,17 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
     worker.fd = fds[0];
     worker.group = g;
     worker.device = device;
+    if (serving) {
+      ::close(commands[0]);
+      worker.commands = commands[1];
+    }
     if (device >= 0) gpu_busy[device] = true;
     running.push_back(worker);
-    progress << "[" << g + 1 << "/" << groups.size() << "] " << groups[g].label() << ": "
-             << groups[g].runs << (config.kind == "planning" ? " runs" : " timed calls");
-    if (device >= 0 && gpus > 1) progress << " on GPU " << device;
-    progress << "\n";
+    if (serving) {
+      hand_over(running.back(), g);
+    } else {
+      say_started(g, device);
+    }
   };
 
   const auto take_messages = [&](Worker& worker) {
@@ -249,6 +316,7 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
         records[worker.group].push_back(record);
         on_record(record);
         ++worker.records;
+        if (record.status == "error") worker.failed = true;
         progress << "  " << group.label() << " " << worker.records << "/" << group.runs << ": "
                  << describe(record) << "\n";
       } else if (type == 'N') {
@@ -256,16 +324,18 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
           progress << "notice: " << gplanner::terminal_text(payload) << "\n";
       } else if (type == 'D') {
         worker.done = true;
+        if (worker.commands >= 0) worker.idle = true;  // ready for the next group
       }
     }
   };
 
   const auto end_worker = [&](Worker& worker) {
     ::close(worker.fd);
+    if (worker.commands >= 0) ::close(worker.commands);
     int status = 0;
     while (::waitpid(worker.pid, &status, 0) < 0 && errno == EINTR) {
     }
-    if (worker.done || should_stop()) return;
+    if (worker.done || worker.idle || should_stop()) return;
     // The run in progress ended without a result.
     const BenchGroup& group = groups[worker.group];
     BenchRecord record;
@@ -298,22 +368,35 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
       running.clear();
       break;
     }
+    // Serving workers left idle end where the next group is not theirs (a group that
+    // runs alone, or the single-threaded ones after them), or where their last group
+    // failed.
+    for (Worker& worker : running) {
+      const bool theirs = next < groups.size() && serves(groups[next]);
+      if (worker.idle && worker.commands >= 0 && (!theirs || worker.failed)) {
+        ::close(worker.commands);
+        worker.commands = -1;
+      }
+    }
     // Start what may start: a group that runs alone when nothing runs (ours on the gpu
-    // backend: beside others of its kind, one per GPU); single-threaded ones up to
-    // `jobs`, never beside one that runs alone, one per GPU on the gpu backend.
+    // backend: beside others of its kind, one per GPU, on a serving worker); single-
+    // threaded ones up to `jobs`, never beside one that runs alone, one per GPU on the
+    // gpu backend.
     for (std::size_t g = next; g < groups.size(); ++g) {
       if (started[g]) continue;
       const BenchGroup& group = groups[g];
-      const bool alone_on_gpus = group.alone && group.gpu && gpus > 1;
+      const bool served = serves(group);
       const bool any_alone = std::any_of(running.begin(), running.end(),
                                          [&](const Worker& w) { return groups[w.group].alone; });
-      const bool all_alone_on_gpus = std::all_of(
-          running.begin(), running.end(),
-          [&](const Worker& w) { return groups[w.group].alone && groups[w.group].gpu; });
+      const bool all_served = std::all_of(running.begin(), running.end(),
+                                          [&](const Worker& w) { return serves(groups[w.group]); });
+      const auto idle = std::find_if(running.begin(), running.end(), [](const Worker& w) {
+        return w.idle && w.commands >= 0 && !w.failed;
+      });
       const int device = group.gpu ? free_gpu() : -1;
       bool may_start = false;
-      if (alone_on_gpus) {
-        may_start = all_alone_on_gpus && device >= 0;
+      if (served) {
+        may_start = all_served && (idle != running.end() || device >= 0);
       } else if (group.alone) {
         may_start = running.empty();
       } else {
@@ -321,10 +404,14 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
       }
       if (may_start) {
         started[g] = true;
-        start_worker(g, device);
+        if (served && idle != running.end()) {
+          hand_over(*idle, g);
+        } else {
+          start_worker(g, device);
+        }
       }
       // The order of those that run alone is kept (those on the GPUs among themselves).
-      if (group.alone && !(alone_on_gpus && may_start)) break;
+      if (group.alone && !(served && may_start)) break;
     }
     while (next < groups.size() && started[next]) ++next;
     std::vector<pollfd> fds;
@@ -344,7 +431,7 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
           ended[i] = true;
         }
       }
-      if (!ended[i] && config.kind == "planning" && worker.killed.empty() &&
+      if (!ended[i] && !worker.idle && config.kind == "planning" && worker.killed.empty() &&
           std::chrono::duration<double>(Clock::now() - worker.last).count() > silence_limit_s) {
         std::ostringstream why;
         why << "no result " << silence_limit_s << " s after the run began (time limit "

@@ -11,10 +11,14 @@
 // up to `jobs` at a time, at most one of them on each GPU, whose checker answers small
 // calls on the cores the others leave (all cores less `jobs` - 1).
 //
-// Several GPUs: each worker of a planning group on the gpu backend gets one GPU of its
-// own (the lowest free one), named in its progress line and in its records' `device`.
-// Our planners on the gpu backend then run one per GPU at a time, side by side, each with
-// an equal share of the cores; the other groups that run alone still run alone.
+// Our planners on the gpu backend run on serving workers: one per GPU, forked once, each
+// running such groups one after another as they come, so that its CUDA context (a few
+// tenths of a second to start, more than an easy problem's plan) serves them all; one
+// whose group ended in an error, or that is idle when the next group is of another kind,
+// ends. Each worker of a group on the gpu backend has one GPU of its own (the lowest
+// free one), named in its progress line and in its records' `device`. With several GPUs
+// our planners run one per GPU at a time, side by side, each with an equal share of the
+// cores; the other groups that run alone still run alone.
 
 #include <functional>
 #include <iosfwd>

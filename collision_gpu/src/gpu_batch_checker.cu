@@ -232,18 +232,31 @@ std::vector<int> devices_of(const GpuCheckerOptions& options) {
 }  // namespace
 
 GpuBatchChecker::GpuBatchChecker(const CollisionModel& model, const GpuCheckerOptions& options) {
-  for (const int device : devices_of(options)) {
-    const GpuDeviceScope scope(device);
-    impls_.push_back(std::make_unique<Impl>(model, options, device));
+  try {
+    for (const int device : devices_of(options)) {
+      const GpuDeviceScope scope(device);
+      impls_.push_back(std::make_unique<Impl>(model, options, device));
+    }
+  } catch (...) {
+    release();  // the destructor does not run for a checker not made
+    throw;
   }
 }
 
-GpuBatchChecker::~GpuBatchChecker() {
-  // Each device's buffers freed with that device current.
+GpuBatchChecker::~GpuBatchChecker() { release(); }
+
+void GpuBatchChecker::release() {
   for (std::unique_ptr<Impl>& impl : impls_) {
-    const GpuDeviceScope scope(impl->device);
+    // Where the device cannot be made current (the runtime unloading at the process's
+    // exit), the buffers are freed as they can be: a destructor throws nothing.
+    std::optional<GpuDeviceScope> scope;
+    try {
+      scope.emplace(impl->device);
+    } catch (const std::exception&) {
+    }
     impl.reset();
   }
+  impls_.clear();
 }
 
 void GpuBatchChecker::check(const float* configurations, std::size_t n, std::uint8_t* verdicts,
@@ -276,7 +289,12 @@ void GpuBatchChecker::check(const float* configurations, std::size_t n, std::uin
     }
   };
   std::vector<std::thread> threads;
-  for (std::size_t p = 1; p < parts; ++p) threads.emplace_back(part, p);
+  try {
+    for (std::size_t p = 1; p < parts; ++p) threads.emplace_back(part, p);
+  } catch (...) {  // no thread to be had: the parts started end first
+    for (std::thread& thread : threads) thread.join();
+    throw;
+  }
   part(0);
   for (std::thread& thread : threads) thread.join();
   for (const std::exception_ptr& error : errors)

@@ -13,6 +13,8 @@ GpuBatchChecker::GpuBatchChecker(const CollisionModel&, const GpuCheckerOptions&
 
 GpuBatchChecker::~GpuBatchChecker() = default;
 
+void GpuBatchChecker::release() {}
+
 void GpuBatchChecker::check(const float*, std::size_t, std::uint8_t*, const float*) {
   throw std::runtime_error("gplanner was built without CUDA");
 }

@@ -250,7 +250,13 @@ GpuNearestNeighbors::GpuNearestNeighbors(int device) {
 }
 
 GpuNearestNeighbors::~GpuNearestNeighbors() {
-  const GpuDeviceScope scope(impl_->device);  // its buffers freed on its device
+  // Its buffers freed on its device; where that cannot be made current (the runtime
+  // unloading at the process's exit), as they can be: a destructor throws nothing.
+  std::optional<GpuDeviceScope> scope;
+  try {
+    scope.emplace(impl_->device);
+  } catch (const std::exception&) {
+  }
   impl_.reset();
 }
 

@@ -100,6 +100,7 @@ class GpuBatchChecker {
 
  private:
   struct Impl;  // the model and buffers on one device
+  void release();  // frees each device's buffers with that device current
   std::vector<std::unique_ptr<Impl>> impls_;
   mutable std::mutex stats_mutex_;
   GpuCheckStats last_stats_;  // of the last call to finish, whole

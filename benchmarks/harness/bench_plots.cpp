@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "harness/pipe_write.h"
+
 extern char** environ;
 
 namespace gplan {
@@ -121,33 +123,6 @@ bool has_matplotlib(const std::string& python) {
   return wait_for(pid) == 0 && !version.empty() && version[0] >= '0' && version[0] <= '9';
 }
 
-// Writes all of `data` to `fd`; false when the reader went away (EPIPE) or on an error.
-// SIGPIPE, which would end gplan when the script exits before reading it all, is held
-// back in this thread meanwhile, and one it raised is taken away.
-bool write_all(int fd, const unsigned char* data, std::size_t size) {
-  sigset_t pipe_signal, previous;
-  sigemptyset(&pipe_signal);
-  sigaddset(&pipe_signal, SIGPIPE);
-  pthread_sigmask(SIG_BLOCK, &pipe_signal, &previous);
-  bool written = true;
-  while (size > 0) {
-    const ssize_t n = ::write(fd, data, size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      written = false;
-      if (errno == EPIPE) {
-        const timespec no_wait{};
-        sigtimedwait(&pipe_signal, nullptr, &no_wait);
-      }
-      break;
-    }
-    data += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
-  return written;
-}
-
 // The python3 to run the script with, or empty (and `notice` set) when none can.
 std::string find_python(std::string* notice) {
   const char* chosen = std::getenv("GPLANNER_PYTHON");
@@ -192,7 +167,7 @@ bool run_plot_script(const char* name, const unsigned char* script_bytes, std::s
     *notice = "plots not drawn: " + python + " could not be started";
     return false;
   }
-  const bool sent = write_all(script.write, script_bytes, size);
+  const bool sent = write_to_pipe(script.write, script_bytes, size);
   script.close_write();
   const int code = wait_for(pid);
   if (code == 0 && sent) return true;

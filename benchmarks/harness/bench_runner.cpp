@@ -20,6 +20,7 @@
 #include "gplanner/common/parallel_for.h"
 #include "gplanner/planner/output/text_escaping.h"
 #include "gplanner/planner/scene/scene.h"
+#include "harness/pipe_write.h"
 #include "harness/plan_runs.h"
 #include "harness/query_runs.h"
 
@@ -246,16 +247,23 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
     if (device >= 0 && gpus > 1) progress << " on GPU " << device;
     progress << "\n";
   };
+  // Hands group g to an idle serving worker; false where the worker has just ended (it
+  // is then given nothing more and goes with its end of file).
   const auto hand_over = [&](Worker& worker, std::size_t g) {
     const std::string line = std::to_string(g) + "\n";
-    if (::write(worker.commands, line.data(), line.size()) != static_cast<ssize_t>(line.size()))
-      throw std::runtime_error(std::string("a worker's command pipe: ") + std::strerror(errno));
+    if (!write_to_pipe(worker.commands, line.data(), line.size())) {
+      ::close(worker.commands);
+      worker.commands = -1;
+      worker.failed = true;
+      return false;
+    }
     worker.group = g;
     worker.idle = false;
     worker.done = false;
     worker.records = 0;
     worker.last = Clock::now();
     say_started(g, worker.device);
+    return true;
   };
   const auto start_worker = [&](std::size_t g, int device) {
     const bool serving = serves(groups[g]);
@@ -405,7 +413,7 @@ std::vector<BenchRecord> run_bench_groups(const BenchConfig& config,
       if (may_start) {
         started[g] = true;
         if (served && idle != running.end()) {
-          hand_over(*idle, g);
+          started[g] = hand_over(*idle, g);  // else again once the worker's end is seen
         } else {
           start_worker(g, device);
         }

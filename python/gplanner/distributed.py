@@ -213,8 +213,8 @@ def _read_folder(folder):
 def _run_shard(config, shard, shards, program, jobs, threads, gpus):
     """One shard on this worker: `gplan-bench CONFIG --shard I/N` in a folder of its own.
 
-    Returns its results.csv text, failed_paths/, ompl/ and problems/ files (name ->
-    bytes), exit status, where it ran and how long it took; raises ShardFailed (Dask
+    Returns its results.csv text, failed_paths/, ompl/ and (the first shard) problems/
+    files (name -> bytes), exit status, where it ran and how long it took; raises ShardFailed (Dask
     retries it) when gplan-bench did not end with 0 or 3.
     """
     try:
@@ -255,7 +255,10 @@ def _run_shard(config, shard, shards, program, jobs, threads, gpus):
                 "status": done.returncode, "seconds": time.monotonic() - started,
                 "csv": text, "failed_paths": _read_folder(os.path.join(out, "failed_paths")),
                 "ompl": _read_folder(os.path.join(out, "ompl")),
-                "problems": _read_folder(os.path.join(out, "problems")), "stderr": stderr}
+                # A problem set's scene files: every shard writes all of them; the first
+                # shard's come back.
+                "problems": _read_folder(os.path.join(out, "problems")) if shard == 1 else {},
+                "stderr": stderr}
 
 
 # --- the configuration ---------------------------------------------------------------
@@ -630,8 +633,7 @@ def _write_folder(out, config, layout, header, done, failures, n, retries):
                                                       result["shard"], n)
                 os.makedirs(os.path.join(out, folder), exist_ok=True)
                 path = os.path.join(out, folder, name)
-                if not (folder == "problems" and os.path.exists(path)):  # the same in each
-                    _write(path, content)
+                _write(path, content)
     if failures:
         _write(os.path.join(out, "failures.txt"),
                "%d of %d shards failed after %d tries each; their records are missing from "

@@ -34,9 +34,11 @@ pytestmark = pytest.mark.filterwarnings(  # tornado 6.2 under distributed 2022.1
 
 # Fields of a record that a seed decides (the times are the machine's). Checked by hand
 # first: two one-process runs of the configuration below gave the same values in each.
-# (Not so for runs that end at their time limit, whose checks and lengths depend on the
-# time: the configuration holds none.)
-SEEDED = ("seed", "status", "solved", "length", "simplified_length", "checks", "graph_states",
+# (Not so for runs that end at their time limit, whose lengths depend on the time: the
+# configuration holds none.) Not `checks`: the planners cut their checks into batches
+# sized by the measured time, so a loaded machine (ctest's parallel tests) counts a
+# few samples more or fewer for the same path.
+SEEDED = ("seed", "status", "solved", "length", "simplified_length", "graph_states",
           "path_check", "rounds", "note")
 
 

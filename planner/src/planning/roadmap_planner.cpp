@@ -93,11 +93,7 @@ bool RoadmapPlanner::check_loaded_milestones(PlanResult* result) {
 
 double RoadmapPlanner::elapsed() const { return seconds_since(started_); }
 
-const char* RoadmapPlanner::why_stop() const {
-  if (options_.should_stop && options_.should_stop()) return "stopped";
-  if (elapsed() >= options_.time_limit_s) return "time limit";
-  return nullptr;
-}
+const char* RoadmapPlanner::why_stop() const { return plan_stop_reason(options_, started_); }
 
 bool RoadmapPlanner::out_of_time(PlanResult* result) const {
   const char* why = why_stop();

@@ -1,17 +1,28 @@
 #pragma once
 // What a planner's stages cost: their time, and the GPU calls the plan's checker (and
-// k-NN, where it has one) made meanwhile; for RoadmapPlanner and TreePlanner.
+// k-NN, where it has one) made meanwhile; and why a plan must stop. For RoadmapPlanner
+// and TreePlanner.
 
 #include <chrono>
 #include <cstddef>
 
 #include "gplanner/planner/checkers/collision_checker.h"
 #include "gplanner/planner/planning/neighbor_finder.h"
+#include "gplanner/planner/planning/plan_options.h"
 
 namespace gplanner {
 
 inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Why a plan begun at `started` must stop now: "stopped" (options.should_stop said so),
+// "time limit", or null where it may go on.
+inline const char* plan_stop_reason(const PlanOptions& options,
+                                    std::chrono::steady_clock::time_point started) {
+  if (options.should_stop && options.should_stop()) return "stopped";
+  if (seconds_since(started) >= options.time_limit_s) return "time limit";
+  return nullptr;
 }
 
 // The GPU calls `checker` and `neighbors` (may be null) have made so far.

@@ -43,11 +43,7 @@ TreePlanner::TreePlanner(const Scene& scene, CollisionChecker* checker, const Pl
 
 double TreePlanner::elapsed() const { return seconds_since(started_); }
 
-const char* TreePlanner::why_stop() const {
-  if (options_.should_stop && options_.should_stop()) return "stopped";
-  if (elapsed() >= options_.time_limit_s) return "time limit";
-  return nullptr;
-}
+const char* TreePlanner::why_stop() const { return plan_stop_reason(options_, started_); }
 
 std::int32_t TreePlanner::add_node(Tree* tree, const float* q, std::int32_t parent) const {
   const int width = scene_.space.width();

@@ -14,16 +14,11 @@
 #include "gplanner/common/gpu_device.h"
 #include "gplanner/planner/checkers/fcl_checker.h"
 #include "gplanner/planner/scene/scene.h"
+#include "require_gpu.h"
 #include "test_support.h"
 
 namespace gplan {
 namespace {
-
-#define REQUIRE_GPU()                                                   \
-  do {                                                                  \
-    const gplanner::GpuDevice device = gplanner::query_gpu_device();    \
-    if (!device.available) GTEST_SKIP() << "no GPU: " << device.reason; \
-  } while (0)
 
 const gplanner::Scene& piano() {
   static const gplanner::Scene scene =

@@ -34,16 +34,11 @@
 #include "gplanner/planner/scene/input_error.h"
 #include "gplanner/planner/scene/scene.h"
 #include "gplanner/planner/scene/scene_collision_model.h"
+#include "require_gpu.h"
 #include "test_support.h"
 
 namespace gplanner {
 namespace {
-
-#define REQUIRE_GPU()                                                   \
-  do {                                                                  \
-    const GpuDevice device = query_gpu_device();                        \
-    if (!device.available) GTEST_SKIP() << "no GPU: " << device.reason; \
-  } while (0)
 
 const Traversal kTraversals[] = {Traversal::kBasic, Traversal::kPacket, Traversal::kBalanced};
 

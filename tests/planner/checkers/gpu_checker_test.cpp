@@ -13,16 +13,11 @@
 #include "gplanner/planner/checkers/fcl_checker.h"
 #include "gplanner/planner/scene/scene_collision_model.h"
 #include "planner/scene_test_support.h"
+#include "require_gpu.h"
 #include "test_support.h"
 
 namespace gplanner {
 namespace {
-
-#define REQUIRE_GPU()                                                   \
-  do {                                                                  \
-    const GpuDevice device = query_gpu_device();                        \
-    if (!device.available) GTEST_SKIP() << "no GPU: " << device.reason; \
-  } while (0)
 
 struct Case {
   std::string scene;

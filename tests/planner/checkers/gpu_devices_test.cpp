@@ -18,16 +18,11 @@
 #include "gplanner/planner/planning/scene_metric.h"
 #include "gplanner/planner/scene/scene_collision_model.h"
 #include "planner/scene_test_support.h"
+#include "require_gpu.h"
 #include "test_support.h"
 
 namespace gplanner {
 namespace {
-
-#define REQUIRE_GPU()                                                   \
-  do {                                                                  \
-    const GpuDevice device = query_gpu_device();                        \
-    if (!device.available) GTEST_SKIP() << "no GPU: " << device.reason; \
-  } while (0)
 
 Scene pr2_scene() { return load_scene(testing::project_root() + "/scenes/pr2_base_arm.yaml"); }
 

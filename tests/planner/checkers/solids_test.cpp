@@ -22,6 +22,7 @@
 #include "gplanner/planner/scene/scene.h"
 #include "gplanner/planner/scene/scene_collision_model.h"
 #include "planner/scene_test_support.h"
+#include "require_gpu.h"
 #include "test_support.h"
 
 namespace gplanner {
@@ -442,12 +443,6 @@ goal: {base: {xyz: [4.5, 1.5, 0], quat_wxyz: [1, 0, 0, 0]}}
     if (expect_cpu[i] >= 0) EXPECT_EQ(a[i], expect_cpu[i]) << "row " << i;
   }
 }
-
-#define REQUIRE_GPU()                                                   \
-  do {                                                                  \
-    const GpuDevice device = query_gpu_device();                        \
-    if (!device.available) GTEST_SKIP() << "no GPU: " << device.reason; \
-  } while (0)
 
 // Every traversal, and the balanced traversal's small-batch kernel, gives the known
 // answers and the cpu backend's verdicts.

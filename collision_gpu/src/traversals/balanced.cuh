@@ -22,6 +22,7 @@ namespace gplanner::traversals {
 // is twice it).
 struct alignas(16) Job {
   int query;
+  int body;  // numbered as detail::body_count's
   float threshold;
   BodyRange a, b;
   float X_AB[12];
@@ -31,6 +32,16 @@ struct alignas(16) Job {
 // whose triangles to test.
 struct Task {
   int job, a, b;
+};
+
+// A point of one body in a solid component's box of the other, found by the containment
+// step's walk (detail::components_inside_by): its three rays run a thread each, and
+// the two of three that agree decide (detail::point_in_solid's vote).
+struct alignas(16) PointInSolid {
+  float p[3];     // in the solid's body frame
+  int component;  // the solid, in SolidsView::components
+  int query;
+  unsigned tally;  // rays done (low byte) and rays that found the point inside (above it)
 };
 
 constexpr int kTracedRounds = 32;
@@ -53,6 +64,8 @@ struct alignas(128) BalancedState {
   unsigned int steps;                 // BV tests a task of this round runs at most
   unsigned int queue_full;
   unsigned int finish;                      // the queue is short: the finish kernel takes all of it
+  alignas(128) unsigned int points_in_solids;  // PointInSolid tests queued (beyond capacity: run at
+                                               // once)
   unsigned int round_tasks[kTracedRounds];  // tasks each of the first rounds took
 };
 
@@ -90,9 +103,9 @@ class BalancedTraversal {
   // The kinematics and broad-phase kernel that makes a batch's jobs.
   void launch_roots(const CollisionModelView& m, const float* d_q, int n, std::uint8_t* d_verdicts,
                     GpuCheckStats* stats);
-  // The containment step of the queries the traversal left free.
-  void run_containment(const CollisionModelView& m, const float* d_q, int n,
-                       std::uint8_t* d_verdicts);
+  // The containment step of the jobs whose queries the traversal left free; `jobs`: at
+  // least the jobs emitted (the kernel reads their count on the device).
+  void run_containment(const CollisionModelView& m, std::size_t jobs, std::uint8_t* d_verdicts);
 
   int resident_task_blocks_ = 1;  // blocks of each kernel resident at once
   int resident_leaf_blocks_ = 1;
@@ -106,10 +119,13 @@ class BalancedTraversal {
   int pair_blocks_ = 1;                // resident blocks of the small-batch kernel
   std::size_t pair_shared_bytes_ = 0;  // its dynamic shared memory: pair_warps_ stacks
   std::size_t job_capacity_ = 0, task_capacity_ = 0, children_capacity_ = 0, leaf_capacity_ = 0;
+  std::size_t point_capacity_ = 0;
+  int resident_ray_blocks_ = 1;
 
   cuda::DeviceBuffer<BalancedState> state_;
   cuda::DeviceBuffer<Job> jobs_;
   cuda::DeviceBuffer<Task> tasks_, children_, leaves_;
+  cuda::DeviceBuffer<PointInSolid> points_;
 };
 
 }  // namespace gplanner::traversals

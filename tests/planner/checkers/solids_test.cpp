@@ -471,5 +471,45 @@ TEST(SolidsGpu, KnownAnswersOnEveryTraversal) {
   }
 }
 
+// The balanced traversal queues each point its containment walk finds in a solid's box
+// and runs the point's three rays a thread each; points beyond the queue's capacity
+// (1,024 under a 1 MB memory cap) are tested where they are found. Every case's rows,
+// repeated to 3,072 rows (a one-kernel batch of 1,024; and chunks of up to 2,330, the
+// first in rounds): in obstacles_inside_link two rows in three hold an obstacle, so a
+// chunk queues more than 1,024 points. The verdicts stay the cpu backend's, row by row.
+TEST(SolidsGpu, QueuedPointsInSolidsAndThoseBeyondTheQueueKeepTheirAnswers) {
+  REQUIRE_GPU();
+  testing::ScratchFolder scratch;
+  for (KnownAnswers& k : known_answer_cases(scratch)) {
+    KnownAnswers many{k.name, k.scene, {}, {}};
+    while (many.count() < 3072) {
+      many.rows.insert(many.rows.end(), k.rows.begin(), k.rows.end());
+      many.expected.insert(many.expected.end(), k.expected.begin(), k.expected.end());
+    }
+    for (const std::size_t rows : {std::size_t(1024), many.count()}) {
+      KnownAnswers part{k.name, k.scene, {}, {}};
+      const int width = k.scene.space.width();
+      part.rows.assign(many.rows.begin(), many.rows.begin() + rows * width);
+      part.expected.assign(many.expected.begin(), many.expected.begin() + rows);
+      CpuChecker cpu(part.scene);
+      const std::vector<std::uint8_t> on_cpu = verdicts(&cpu, part);
+      EXPECT_EQ(on_cpu, part.expected) << k.name;
+      GpuCheckerOptions options;
+      options.traversal = Traversal::kBalanced;
+      options.memory_cap_bytes = std::size_t(1) << 20;
+      options.warp_per_pair_up_to = 1024;
+      options.host_calls_up_to = 0;
+      GpuChecker gpu(part.scene, options);
+      const std::vector<std::uint8_t> on_gpu = verdicts(&gpu, part);
+      const std::string what = k.name + ", " + std::to_string(rows) + " rows";
+      if (rows <= 1024)
+        EXPECT_TRUE(gpu.last_stats().warp_per_pair) << what << ": not one kernel";
+      else
+        EXPECT_GT(gpu.last_stats().rounds, 0u) << what << ": no chunk ran in rounds";
+      EXPECT_EQ(on_gpu, on_cpu) << what;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gplanner

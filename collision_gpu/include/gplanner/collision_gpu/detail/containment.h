@@ -114,11 +114,14 @@ GP_HD bool point_in_solid(const SolidsView& s, const Component& c, V3d p) {
 // Whether some component of body A lies inside a solid component of body B, given that
 // their surfaces do not come within the threshold; X_BA places A in B's frame, margin
 // grows every box test. A's point tree against B's solid tree, depth first (a point
-// against a box directly, in B's frame); a point in a solid component's box is tested by
-// point_in_solid.
-template <typename T>
-GP_HD bool components_inside(const SolidsView& s, BodySolids a, BodySolids b,
-                             const geometry::Transform<T>& X_BA, T margin) {
+// against a box directly, in B's frame); a point in a solid component's box is handed
+// to point_test(c, p) (p in B's frame), which says whether it lies inside c (true ends
+// the walk): components_inside below tests it at once, the GPU's balanced traversal
+// queues it for a thread of its own per ray.
+template <typename T, typename PointTest>
+GP_HD bool components_inside_by(const SolidsView& s, BodySolids a, BodySolids b,
+                                const geometry::Transform<T>& X_BA, T margin,
+                                PointTest&& point_test) {
   if (a.points < 0 || b.solids < 0) return false;
   geometry::Mat3<T> abs_R;
   for (int i = 0; i < 3; ++i)
@@ -145,7 +148,7 @@ GP_HD bool components_inside(const SolidsView& s, BodySolids a, BodySolids b,
         continue;
       if (nb.is_leaf()) {
         const V3d p{double(p_B.x), double(p_B.y), double(p_B.z)};
-        if (point_in_solid(s, s.components[nb.component()], p)) return true;
+        if (point_test(nb.component(), p)) return true;
         continue;
       }
       stack_a[top] = ia;
@@ -175,6 +178,15 @@ GP_HD bool components_inside(const SolidsView& s, BodySolids a, BodySolids b,
     ++top;
   }
   return false;
+}
+
+// The same, each point tested by point_in_solid as it is found.
+template <typename T>
+GP_HD bool components_inside(const SolidsView& s, BodySolids a, BodySolids b,
+                             const geometry::Transform<T>& X_BA, T margin) {
+  return components_inside_by(s, a, b, X_BA, margin, [&](int component, V3d p) {
+    return point_in_solid(s, s.components[component], p);
+  });
 }
 
 // Whether a component of either body lies inside a solid component of the other (B

@@ -298,18 +298,25 @@ GP_HD bool body_may_touch(const CollisionModelView& m, int body, SphereCentre c_
   return spheres_may_touch(m, p, c_W(m.pair_a[p]), c_W(m.pair_b[p]), margin);
 }
 
+// The solid components of a checked body's two bodies, A and B as body_ranges names them.
+struct BodySolidsPair {
+  BodySolids a, b;
+};
+
+GP_HD BodySolidsPair body_solids(const CollisionModelView& m, int body) {
+  if (body < m.link_count) return {m.environment_solids, m.link_solids[body]};
+  const int p = body - m.link_count;
+  return {m.link_solids[m.pair_a[p]], m.link_solids[m.pair_b[p]]};
+}
+
 // The containment step of one checked body (numbered as body_count's), once its two
 // bodies' surfaces are known to be apart: whether a component of either lies inside a
 // solid component of the other (containment.h), within `margin` (its BodyTolerance's).
 // X_WL(l) gives link l's pose.
 template <typename LinkPose>
 GP_HD bool body_contained(const CollisionModelView& m, int body, LinkPose X_WL, float margin) {
-  if (body < m.link_count) {
-    return either_inside(m.solids, m.environment_solids, m.link_solids[body], X_WL(body), margin);
-  }
-  const int p = body - m.link_count;
-  return either_inside(m.solids, m.link_solids[m.pair_a[p]], m.link_solids[m.pair_b[p]],
-                       body_transform(m, body, X_WL), margin);
+  const BodySolidsPair s = body_solids(m, body);
+  return either_inside(m.solids, s.a, s.b, body_transform(m, body, X_WL), margin);
 }
 
 // The containment step of a query whose surface tests found no collision: whether a

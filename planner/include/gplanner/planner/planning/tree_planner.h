@@ -38,6 +38,7 @@
 #include "gplanner/planner/planning/certified_motions.h"
 #include "gplanner/planner/planning/local_planner.h"
 #include "gplanner/planner/planning/milestone_sampler.h"
+#include "gplanner/planner/planning/nearest_node_index.h"
 #include "gplanner/planner/planning/plan_options.h"
 #include "gplanner/planner/planning/plan_result.h"
 
@@ -67,11 +68,14 @@ class TreePlanner {
 
  private:
   struct Tree {
+    explicit Tree(const ConfigurationMetric& metric) : index(metric) {}
     std::vector<float> nodes;             // shape [n, width]
     std::vector<std::int32_t> parent;     // -1 for the root
     std::vector<std::uint8_t> removed;    // an edge on its way to the root failed the path check
     std::vector<std::uint8_t> certified;  // the edge to its parent passed the path check
+    NearestNodeIndex index;               // over `nodes`
     std::size_t size() const { return parent.size(); }
+    void clear();
   };
   // A round's extension from tree `from` and connection from the other tree.
   struct Lane {
@@ -87,8 +91,8 @@ class TreePlanner {
   };
 
   std::int32_t add_node(Tree* tree, const float* q, std::int32_t parent) const;
-  // The tree's nearest node to q not removed, or -1 where the stop came first (polled
-  // where may_poll, which sets *stopped; seen in *stopped otherwise).
+  // The tree's nearest node to q not removed (its index's), or -1 where the stop came
+  // first (polled where may_poll, which sets *stopped; seen in *stopped otherwise).
   std::int32_t nearest(const Tree& tree, const float* q, bool may_poll,
                        std::atomic<bool>* stopped) const;
   // Draws the round's lanes and their samples (rows: shape [*, width]); the first round's

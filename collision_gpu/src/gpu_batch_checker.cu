@@ -52,7 +52,7 @@ struct GpuBatchChecker::Impl {
 
   // Small batches: page-locked staging, so that every copy is queued with the kernels and
   // a call waits for the device once (kPinnedQueries rows at most).
-  static constexpr std::size_t kPinnedQueries = 1024;
+  static constexpr std::size_t kPinnedQueries = 4096;
   cuda::PinnedBuffer<float> pinned_configurations, pinned_clearances;
   cuda::PinnedBuffer<std::uint8_t> pinned_verdicts;
   cuda::PinnedBuffer<traversals::DeviceTestCounts> pinned_counts;

@@ -125,7 +125,8 @@ TEST(GpuChecker, ChunksBatchesOverTheMemoryCap) {
 // The balanced traversal's kinematics and broad phase run a warp per query for an arm
 // with hundreds of sphere tests in batches of up to 16,384 queries, a thread per query
 // for larger batches and for a rigid body; small batches run a warp per body pair in one
-// kernel (by default up to 1,024 queries of an arm, 10 of a rigid body), larger ones in
+// kernel (by default up to 1,024 queries of a PR2 arm, 4,096 of an arm of few bodies,
+// 10 of a rigid body), larger ones in
 // rounds of tasks, whose short remainder a warp per task finishes. The verdicts of every
 // kind are compared with the cpu backend above; this asserts which kind ran.
 TEST(GpuChecker, ChoosesItsKernelsByRobotAndBatchSize) {
@@ -150,6 +151,25 @@ TEST(GpuChecker, ChoosesItsKernelsByRobotAndBatchSize) {
     // 20,000 queries of an arm leave tens of thousands of tasks after two rounds; the
     // queue shrinks round by round until the finish kernel takes the last few thousand.
     if (e.n == 20000) EXPECT_GT(gpu.last_stats().finished_tasks, 0u) << e.scene;
+  }
+  // An arm of few bodies (the Panda: 34 links and pairs) runs batches of up to 4,096 a
+  // warp per body pair, one kernel.
+  const std::string data = testing::shared_data();
+  if (data.empty()) GTEST_SKIP() << "no ../shared/data (set GPLANNER_SHARED_DATA)";
+  const std::string panda = data + "/motionbenchmaker/panda";
+  const testing::ScratchFolder folder;
+  const Scene scene = load_scene(folder.write(
+      "box.yaml", "name: box_0001\nrobot:\n  urdf: " + panda + "/robot/panda.urdf\n  srdf: " +
+                      panda + "/robot/panda.srdf\n  packages: {meshes: " + panda +
+                      "/robot/meshes}\nmoveit:\n  scene: " + panda +
+                      "/problems/box_panda/scene0001.yaml\n  request: " + panda +
+                      "/problems/box_panda/request0001.yaml\n"));
+  GpuChecker gpu(scene, kGpuOnly);
+  for (const std::size_t n : {std::size_t(4096), std::size_t(4097)}) {
+    const std::vector<float> q = testing::sample_configurations(scene, n, 31);
+    std::vector<std::uint8_t> verdicts(n);
+    gpu.check(q.data(), n, verdicts.data());
+    EXPECT_EQ(gpu.last_stats().warp_per_pair, n <= 4096) << "Panda " << n;
   }
 }
 

@@ -33,9 +33,11 @@ struct GpuCheckerOptions {
   // one kernel (the pair's node pairs tested 32 at a time) instead of in rounds of
   // tasks; a small batch's time is the latency of its longest chain of tests, which
   // rounds of launches lengthen. 0: always rounds. kAuto, as measured on an H100
-  // (benchmarks/history/issue4_planning.md): up to 1,024 queries for robots with more link and pair
-  // tests than a warp has lanes (many small body pairs), up to 10 for the others (whose one body
-  // pair with the environment the rounds spread over more than a warp).
+  // (benchmarks/history/issue4_planning.md) and an H200 (issue 33): for robots with more
+  // link and pair tests than a warp has lanes (many small body pairs), up to 4,096 queries
+  // where they have up to 40 checked bodies (an arm), 1,024 from 160 (a PR2 arm, a
+  // humanoid), in proportion between; up to 10 for the others (whose one body pair with
+  // the environment the rounds spread over more than a warp).
   static constexpr std::size_t kAuto = ~std::size_t(0);
   std::size_t warp_per_pair_up_to = kAuto;
   // For the planner's gpu backend (GpuChecker; GpuBatchChecker itself always uses the

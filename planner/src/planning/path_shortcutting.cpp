@@ -245,28 +245,26 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
 
 }  // namespace
 
-double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, LocalPlanner* fine,
-                     CertifiedMotions* certify, int rounds, int candidates, std::mt19937_64* rng,
-                     std::vector<float>* path) {
+ShortcutRounds run_shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local,
+                                   LocalPlanner* fine, int rounds, int candidates,
+                                   std::mt19937_64* rng, const std::vector<float>& path) {
+  ShortcutRounds done;
+  done.given = path;
+  done.rng_before = *rng;
+  done.shortened = path;
+  done.stopped = !shortcut_rounds(space, local, fine, nullptr, rounds, candidates, rng,
+                                  &done.shortened, &done.history);
+  return done;
+}
+
+double certify_shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local,
+                               LocalPlanner* fine, CertifiedMotions* certify, int rounds,
+                               int candidates, const ShortcutRounds& done, bool shortened_failed,
+                               std::mt19937_64* rng, std::vector<float>* path) {
   const int width = space.width();
   const ConfigurationMetric& metric = local->metric();
-  if (certify == nullptr) {
-    shortcut_rounds(space, local, fine, nullptr, rounds, candidates, rng, path);
-    return path_length(metric, *path, width);
-  }
-  // Certified: the rounds with `fine`'s checks (pipelined where calls cost more than
-  // samples), then the path they give certified whole, in one certification: a few calls
-  // where certifying each round's shortcuts took several calls a round. Where a segment
-  // fails (free at fine's samples, not certified: a shortcut grazing an obstacle between
-  // them), the paths of the rounds before are certified, all in one certification, and
-  // the last that passes whole is taken; where none does, the rounds again from the
-  // path given, each shortcut certified.
-  const std::mt19937_64 rng_before = *rng;
-  std::vector<float> shortened = *path;
-  std::vector<std::vector<float>> history;
-  if (!shortcut_rounds(space, local, fine, nullptr, rounds, candidates, rng, &shortened,
-                       &history) ||
-      shortened == *path)  // stopped, or nothing shorter: the given path, certified
+  *path = done.given;
+  if (done.stopped || done.shortened == done.given)  // stopped, or nothing shorter
     return path_length(metric, *path, width);
   // Whether each path passes whole: its segments (waypoint i to i + 1) in one call.
   const auto certified_whole = [&](const std::vector<const std::vector<float>*>& paths,
@@ -287,14 +285,16 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
     return true;
   };
   std::vector<std::uint8_t> passed;
-  if (!certified_whole({&shortened}, &passed)) return path_length(metric, *path, width);
-  if (passed[0]) {
-    path->swap(shortened);
-    return path_length(metric, *path, width);
+  if (!shortened_failed) {
+    if (!certified_whole({&done.shortened}, &passed)) return path_length(metric, *path, width);
+    if (passed[0]) {
+      *path = done.shortened;
+      return path_length(metric, *path, width);
+    }
   }
   std::vector<const std::vector<float>*> earlier;  // latest first
-  for (std::size_t r = history.size(); r-- > 0;)
-    if (history[r] != shortened) earlier.push_back(&history[r]);
+  for (std::size_t r = done.history.size(); r-- > 0;)
+    if (done.history[r] != done.shortened) earlier.push_back(&done.history[r]);
   if (!earlier.empty() && !certified_whole(earlier, &passed))
     return path_length(metric, *path, width);
   for (std::size_t i = 0; i < earlier.size(); ++i) {
@@ -303,9 +303,29 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
       return path_length(metric, *path, width);
     }
   }
-  *rng = rng_before;
+  *rng = done.rng_before;
   shortcut_rounds(space, local, fine, certify, rounds, candidates, rng, path);
   return path_length(metric, *path, width);
+}
+
+double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, LocalPlanner* fine,
+                     CertifiedMotions* certify, int rounds, int candidates, std::mt19937_64* rng,
+                     std::vector<float>* path) {
+  if (certify == nullptr) {
+    shortcut_rounds(space, local, fine, nullptr, rounds, candidates, rng, path);
+    return path_length(local->metric(), *path, space.width());
+  }
+  // Certified: the rounds with `fine`'s checks (pipelined where calls cost more than
+  // samples), then the path they give certified whole, in one certification: a few calls
+  // where certifying each round's shortcuts took several calls a round. Where a segment
+  // fails (free at fine's samples, not certified: a shortcut grazing an obstacle between
+  // them), the paths of the rounds before are certified, all in one certification, and
+  // the last that passes whole is taken; where none does, the rounds again from the
+  // path given, each shortcut certified.
+  const ShortcutRounds done =
+      run_shortcut_rounds(space, local, fine, rounds, candidates, rng, *path);
+  return certify_shortcut_rounds(space, local, fine, certify, rounds, candidates, done, false, rng,
+                                 path);
 }
 
 }  // namespace gplanner

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "gplanner/common/parallel_for.h"
 #include "gplanner/planner/planning/path_shortcutting.h"
@@ -19,6 +20,8 @@ using Clock = std::chrono::steady_clock;
 // Where calls have a fixed cost, a round's lanes fill about half of it in rows (a call
 // costs about the same up to there), within these bounds.
 constexpr std::size_t kMinLanes = 8, kMaxLanes = 512;
+// The shortcut rounds' generator: the plan's seed with these bits flipped.
+constexpr std::uint64_t kShortcutSeed = 0x5bd1e995u;
 // Nearest-node distances a round computes from which its lanes run on all threads.
 constexpr std::size_t kThreadedNodeDistances = std::size_t(1) << 19;
 
@@ -296,7 +299,9 @@ TreePlanner::PathOutcome TreePlanner::finish_path(const std::vector<float>& path
                                                   const std::vector<int>& edge_tree,
                                                   const std::vector<std::int32_t>& edge_child,
                                                   LocalPlanner* fine, bool certify,
-                                                  PlanResult* result, std::vector<float>* found) {
+                                                  PlanResult* result, std::vector<float>* found,
+                                                  std::optional<ShortcutRounds>* failed_shortcut) {
+  failed_shortcut->reset();
   const int width = scene_.space.width();
   std::vector<std::size_t> unchecked;  // the path's edges not yet certified
   for (std::size_t e = 0; e < edge_tree.size(); ++e)
@@ -331,13 +336,14 @@ TreePlanner::PathOutcome TreePlanner::finish_path(const std::vector<float>& path
     // tree path's long detours need no certificate where the shortcut passes. Where calls
     // cost (the GPU), the tree path's edges are certified in the same call, for the case
     // where the shortcut fails; otherwise after it, only then.
-    std::vector<float> shortcut = path;
+    ShortcutRounds rounds;
     {
       StageTimer timer(&result->times.shortcutting, &result->gpu_calls.shortcutting, *checker_);
-      std::mt19937_64 shortcut_rng(options_.seed ^ 0x5bd1e995u);
-      shortcut_path(scene_.space, &local_, fine, nullptr, options_.shortcut_rounds,
-                    options_.shortcut_candidates, &shortcut_rng, &shortcut);
+      std::mt19937_64 shortcut_rng(kShortcutSeed ^ options_.seed);
+      rounds = run_shortcut_rounds(scene_.space, &local_, fine, options_.shortcut_rounds,
+                                   options_.shortcut_candidates, &shortcut_rng, path);
     }
+    const std::vector<float>& shortcut = rounds.shortened;
     std::vector<std::size_t> all(shortcut.size() / width - 1);
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
     add_segments(shortcut, all);
@@ -353,14 +359,18 @@ TreePlanner::PathOutcome TreePlanner::finish_path(const std::vector<float>& path
     if (std::none_of(invalid.begin(), invalid.begin() + all.size(),
                      [](std::uint8_t v) { return v; })) {
       if (with_tree) apply(invalid, tree_first);
-      *found = std::move(shortcut);
+      *found = shortcut;
       return PathOutcome::kShortened;
     }
+    // The rounds are kept for the shortcutting of the tree path, should it pass: they
+    // need not run again, only the earlier rounds' paths be certified.
     if (with_tree) {
       if (!apply(invalid, tree_first)) return PathOutcome::kRefused;
       *found = path;
+      *failed_shortcut = std::move(rounds);
       return PathOutcome::kFound;
     }
+    *failed_shortcut = std::move(rounds);
     from.clear();
     to.clear();
   }
@@ -373,7 +383,10 @@ TreePlanner::PathOutcome TreePlanner::finish_path(const std::vector<float>& path
     if (!motions->check_motions(from.data(), to.data(), unchecked.size(), invalid.data()))
       return PathOutcome::kStopped;
   }
-  if (!apply(invalid, 0)) return PathOutcome::kRefused;
+  if (!apply(invalid, 0)) {
+    failed_shortcut->reset();
+    return PathOutcome::kRefused;
+  }
   *found = path;
   return PathOutcome::kFound;
 }
@@ -404,6 +417,9 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
   double reported = -1;
   std::vector<float> found;
   bool shortened = false;  // found is the shortcut path, certified
+  // Where found is the tree path: the shortcut rounds already run on it, whose path
+  // failed its certification.
+  std::optional<ShortcutRounds> failed_shortcut;
   while (found.empty()) {
     if (const char* why = why_stop()) {
       result.stop_reason = why;
@@ -436,8 +452,8 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
       std::vector<int> edge_tree;
       std::vector<std::int32_t> edge_child;
       const std::vector<float> path = path_through(s, g, &edge_tree, &edge_child);
-      const PathOutcome outcome =
-          finish_path(path, edge_tree, edge_child, &fine, certify, &result, &found);
+      const PathOutcome outcome = finish_path(path, edge_tree, edge_child, &fine, certify, &result,
+                                              &found, &failed_shortcut);
       if (outcome == PathOutcome::kRefused) ++paths_refused_;
       if (outcome == PathOutcome::kShortened || outcome == PathOutcome::kFound) {
         result.length_before_shortcut = path_length(local_.metric(), path, width);
@@ -459,10 +475,15 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
     result.length = path_length(local_.metric(), result.path, width);
     if (options_.shortcut_rounds > 0 && !shortened) {
       StageTimer timer(&result.times.shortcutting, &result.gpu_calls.shortcutting, *checker_);
-      std::mt19937_64 shortcut_rng(options_.seed ^ 0x5bd1e995u);
-      result.length = shortcut_path(scene_.space, &local_, &fine, certify ? &certifier_ : nullptr,
-                                    options_.shortcut_rounds, options_.shortcut_candidates,
-                                    &shortcut_rng, &result.path);
+      std::mt19937_64 shortcut_rng(kShortcutSeed ^ options_.seed);
+      result.length =
+          failed_shortcut
+              ? certify_shortcut_rounds(scene_.space, &local_, &fine, &certifier_,
+                                        options_.shortcut_rounds, options_.shortcut_candidates,
+                                        *failed_shortcut, true, &shortcut_rng, &result.path)
+              : shortcut_path(scene_.space, &local_, &fine, certify ? &certifier_ : nullptr,
+                              options_.shortcut_rounds, options_.shortcut_candidates, &shortcut_rng,
+                              &result.path);
       if (options_.progress) {
         const std::size_t nodes = result.milestones;
         options_.progress({"shortcut", result.rounds, nodes, nodes - 2, nodes - 2, elapsed()});

@@ -34,6 +34,30 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
                      CertifiedMotions* certify, int rounds, int candidates, std::mt19937_64* rng,
                      std::vector<float>* path);
 
+// shortcut_path in two parts, for callers that certify the shortened path themselves
+// (with other motions in the same calls) and, where it fails, go on without running the
+// rounds again: run_shortcut_rounds is shortcut_path without `certify`, each round's
+// path kept; certify_shortcut_rounds is what shortcut_path does with `certify` once the
+// rounds have run (shortened_failed: the shortened path is known to fail its
+// certification, so that only the earlier rounds' paths are certified). The given path
+// must then be certified (a path it returns is the given one, an earlier round's, or
+// one of certified shortcuts made from the given one); rng as after the rounds.
+struct ShortcutRounds {
+  std::vector<float> given;                 // the path the rounds started from
+  std::vector<float> shortened;             // the last round's path
+  std::vector<std::vector<float>> history;  // each round's path, in order
+  std::mt19937_64 rng_before;               // the generator before the rounds
+  bool stopped = false;                     // the stop ended them (shortened: as it was)
+};
+ShortcutRounds run_shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local,
+                                   LocalPlanner* fine, int rounds, int candidates,
+                                   std::mt19937_64* rng, const std::vector<float>& path);
+// Returns the metric length of *path, the path chosen.
+double certify_shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local,
+                               LocalPlanner* fine, CertifiedMotions* certify, int rounds,
+                               int candidates, const ShortcutRounds& done, bool shortened_failed,
+                               std::mt19937_64* rng, std::vector<float>* path);
+
 // Metric length of a path (shape [waypoints, width]).
 double path_length(const ConfigurationMetric& metric, const std::vector<float>& path, int width);
 

@@ -31,6 +31,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -39,6 +40,7 @@
 #include "gplanner/planner/planning/local_planner.h"
 #include "gplanner/planner/planning/milestone_sampler.h"
 #include "gplanner/planner/planning/nearest_node_index.h"
+#include "gplanner/planner/planning/path_shortcutting.h"
 #include "gplanner/planner/planning/plan_options.h"
 #include "gplanner/planner/planning/plan_result.h"
 
@@ -123,11 +125,13 @@ class TreePlanner {
   };
   // Checks the path (edges: their tree and child node): with certification and
   // shortcutting, shortcut first and the shortened path certified whole, the path's own
-  // edges only where that fails (in the same call where calls cost); otherwise the
-  // path's edges not yet certified.
+  // edges only where that fails (in the same call where calls cost; then, where they
+  // pass, *failed_shortcut holds the rounds, for the path's shortcutting to go on from);
+  // otherwise the path's edges not yet certified.
   PathOutcome finish_path(const std::vector<float>& path, const std::vector<int>& edge_tree,
                           const std::vector<std::int32_t>& edge_child, LocalPlanner* fine,
-                          bool certify, PlanResult* result, std::vector<float>* found);
+                          bool certify, PlanResult* result, std::vector<float>* found,
+                          std::optional<ShortcutRounds>* failed_shortcut);
   const char* why_stop() const;
   double elapsed() const;
 

@@ -22,8 +22,12 @@ using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMinLanes = 8, kMaxLanes = 512;
 // The shortcut rounds' generator: the plan's seed with these bits flipped.
 constexpr std::uint64_t kShortcutSeed = 0x5bd1e995u;
-// Nearest-node distances a round computes from which its lanes run on all threads.
+// Nearest-node distances a round computes from which its lanes run on all threads, and
+// rows it interpolates from which its rows are written on all threads: about half a
+// millisecond of work (a nanosecond a distance, ten a row for an arm), below which
+// waking a 16-core host's threads cost as much as they saved.
 constexpr std::size_t kThreadedNodeDistances = std::size_t(1) << 19;
+constexpr std::size_t kThreadedRows = std::size_t(1) << 16;
 
 }  // namespace
 
@@ -99,9 +103,9 @@ void TreePlanner::draw_round(bool first_round, std::vector<Lane>* lanes, std::ve
   const auto started = Clock::now();
   const std::size_t tree_nodes = trees_[0].size() + trees_[1].size();
   std::atomic<bool> stopped{false};
-  // Threads only for rounds of about half a millisecond or more of distances (about a
-  // nanosecond a node for an arm, NearestNodeIndex): on a 16-core host, a round of 64
-  // lanes over 1,600 nodes took as long on 16 threads as on one.
+  // (Before NearestNodeIndex, MotionBenchMaker's cage 0001, rounds of about 100 lanes
+  // over up to 1,600 nodes: the stage took 50.8 ms on a 16-core host's threads, 23.6 ms on
+  // a 2-core one's.)
   parallel_for(
       lanes_, tree_nodes * lanes_ > kThreadedNodeDistances ? resolve_thread_count(0) : 1,
       [&](std::size_t begin, std::size_t end, int thread) {
@@ -156,7 +160,7 @@ void TreePlanner::draw_round(bool first_round, std::vector<Lane>* lanes, std::ve
   }
   rows->resize(row_count * width);
   parallel_for(
-      lanes_, row_count > 4096 ? resolve_thread_count(0) : 1,
+      lanes_, row_count > kThreadedRows ? resolve_thread_count(0) : 1,
       [&](std::size_t begin, std::size_t end, int) {
         for (std::size_t i = begin; i < end; ++i) {
           const Lane& lane = (*lanes)[i];

@@ -33,7 +33,12 @@ CertifiedMotions::CertifiedMotions(const Scene& scene, CollisionChecker* checker
     : scene_(scene),
       checker_(checker),
       bound_(scene.robot, scene.space),
-      batch_size_(options.batch_seconds, 256, 64, std::max<std::size_t>(options.max_batch, 64)) {
+      // The first batch of ends, before any is timed: 256, or half what a call costs where
+      // calls cost (an end may need a plain check besides its clearances), as the local
+      // planner's.
+      batch_size_(options.batch_seconds,
+                  std::max<std::size_t>(256, checker->configurations_per_call_cost() / 2), 64,
+                  std::max<std::size_t>(options.max_batch, 64)) {
   step_ = options.step;
   if (!(step_ > 0)) {
     // Larger steps make fewer segments but larger clearances, and the cost of a check

@@ -23,6 +23,9 @@ struct Proposal {
   // Checked at the fine resolution at once (no second check): where calls cost more
   // than the extra samples and the fine samples fit one call.
   bool fine_at_once = false;
+  // Every shortcut of the path (no random choice): a round that leaves the path as it
+  // was would propose and find the same again.
+  bool all_pairs = false;
 };
 
 // Shortcuts (i, j), j > i + 1, on `path`: all of them when few, else `candidates` at
@@ -33,6 +36,7 @@ Proposal propose(const std::vector<float>& path, int width, int candidates, Loca
   const std::size_t m = path.size() / width;
   const std::size_t all = (m - 1) * (m - 2) / 2;
   if (all <= static_cast<std::size_t>(candidates)) {
+    p.all_pairs = true;
     for (std::size_t i = 0; i + 2 < m; ++i)
       for (std::size_t j = i + 2; j < m; ++j) p.pairs.emplace_back(i, j);
   } else {
@@ -233,9 +237,12 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
     const bool refined = refine && 2 * kept.size() <= kMaxWaypoints;
     const bool shorter = kept.size() < m;
     std::vector<float> next_path = kept_path(space, *path, kept, refined);
+    // The same path again after a round of every shortcut: the rounds after it would be
+    // this one again (the same proposals, verdicts and way), to the same end.
+    const bool settled = p.all_pairs && next_path == *path;
     path->swap(next_path);
     if (history) history->push_back(*path);
-    if (!shorter && !refined) break;
+    if ((!shorter && !refined) || settled) break;
     const double new_length = path_length(metric, *path, width);
     idle_rounds = new_length < length * (1 - kGain) ? 0 : idle_rounds + 1;
     length = new_length;

@@ -80,9 +80,14 @@ struct GpuBatchChecker::Impl {
     stop_event.emplace();
   }
 
-  // Whether a batch of n goes the one-wait way: one kernel launch sequence, no rounds.
+  // Whether a batch of n goes the one-wait way: one kernel launch sequence, no rounds,
+  // one chunk under the memory cap.
   bool is_small(std::size_t n) const {
     if (n > kPinnedQueries) return false;
+    const bool is_balanced = options.traversal == Traversal::kBalanced;
+    if (chunk_size(n, bytes_per_query(true),
+                   is_balanced ? traversals::BalancedTraversal::kChunkShare : 0.9) < n)
+      return false;
     if (options.traversal == Traversal::kBasic) return true;
     return options.traversal == Traversal::kBalanced &&
            n <= balanced->small_batch_up_to(options.warp_per_pair_up_to);
@@ -140,6 +145,13 @@ struct GpuBatchChecker::Impl {
     return true;
   }
 
+  // Bytes of chunk-sized buffers per query: its row, its clearances, its verdict and
+  // counters.
+  std::size_t bytes_per_query(bool with_clearances) const {
+    const std::size_t links = with_clearances ? static_cast<std::size_t>(view.link_count) : 0;
+    return (view.width + links) * sizeof(float) + 1 + 4 * sizeof(unsigned);
+  }
+
   // Queries per chunk under the memory cap, for `bytes_per_query` of chunk-sized buffers.
   std::size_t chunk_size(std::size_t n, std::size_t bytes_per_query, double share) const {
     const std::size_t fit = static_cast<std::size_t>(share * memory_cap) / bytes_per_query;
@@ -157,9 +169,8 @@ struct GpuBatchChecker::Impl {
     const bool is_balanced = options.traversal == Traversal::kBalanced;
     const std::size_t width = view.width;
     const std::size_t links = h_clearances ? static_cast<std::size_t>(view.link_count) : 0;
-    const std::size_t per_query = (width + links) * sizeof(float) + 1 + 4 * sizeof(unsigned);
-    std::size_t chunk =
-        chunk_size(n, per_query, is_balanced ? traversals::BalancedTraversal::kChunkShare : 0.9);
+    std::size_t chunk = chunk_size(n, bytes_per_query(h_clearances != nullptr),
+                                   is_balanced ? traversals::BalancedTraversal::kChunkShare : 0.9);
     if (is_balanced) balanced->reserve(chunk, memory_cap);
     configurations.reserve(chunk * width);
     if (h_clearances) {

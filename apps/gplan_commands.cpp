@@ -62,7 +62,7 @@ const char* const kUsage =
     "      its scene (the file's scene: key, or --scene)\n"
     "  gplan bench CONFIG ...\n"
     "      deprecated alias of gplan-bench CONFIG ... (the benchmark program installed\n"
-    "      beside gplan; gplan-bench --help), to be removed in 0.5\n"
+    "      beside gplan; gplan-bench --help), to be removed in 0.6\n"
     "  gplan info\n"
     "      gplanner's version, how it was built and which GPUs it can use (numbered as\n"
     "      --device numbers them)\n"

@@ -1,5 +1,5 @@
 // Every header path of gplanner 0.1.0 that moved (planner/ split by stage): each still
-// compiles through its forwarding header, with a deprecation message (0.2.0; removed in 0.5).
+// compiles through its forwarding header, with a deprecation message (0.2.0; removed in 0.6).
 #include "gplanner/planner/atomic_file.h"
 #include "gplanner/planner/checker_comparison.h"
 #include "gplanner/planner/checker_factory.h"

@@ -1,5 +1,5 @@
 #pragma once
-// Deprecated since 0.2.0, to be removed in 0.5: gplanner/planner/checker_factory.h moved to gplanner/planner/checkers/checker_factory.h
+// Deprecated since 0.2.0, to be removed in 0.6: gplanner/planner/checker_factory.h moved to gplanner/planner/checkers/checker_factory.h
 // (planner/ is split by stage); include that instead.
 #pragma message("gplanner/planner/checker_factory.h is deprecated (gplanner 0.2.0): include gplanner/planner/checkers/checker_factory.h")
 #include "gplanner/planner/checkers/checker_factory.h"

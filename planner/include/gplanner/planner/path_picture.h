@@ -1,5 +1,5 @@
 #pragma once
-// Deprecated since 0.2.0, to be removed in 0.5: gplanner/planner/path_picture.h moved to gplanner/planner/output/path_picture.h
+// Deprecated since 0.2.0, to be removed in 0.6: gplanner/planner/path_picture.h moved to gplanner/planner/output/path_picture.h
 // (planner/ is split by stage); include that instead.
 #pragma message("gplanner/planner/path_picture.h is deprecated (gplanner 0.2.0): include gplanner/planner/output/path_picture.h")
 #include "gplanner/planner/output/path_picture.h"

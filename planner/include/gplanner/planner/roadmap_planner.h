@@ -1,5 +1,5 @@
 #pragma once
-// Deprecated since 0.2.0, to be removed in 0.5: gplanner/planner/roadmap_planner.h moved to gplanner/planner/planning/roadmap_planner.h
+// Deprecated since 0.2.0, to be removed in 0.6: gplanner/planner/roadmap_planner.h moved to gplanner/planner/planning/roadmap_planner.h
 // (planner/ is split by stage); include that instead.
 #pragma message("gplanner/planner/roadmap_planner.h is deprecated (gplanner 0.2.0): include gplanner/planner/planning/roadmap_planner.h")
 #include "gplanner/planner/planning/roadmap_planner.h"

@@ -1,5 +1,5 @@
 #pragma once
-// Deprecated since 0.2.0, to be removed in 0.5: gplanner/planner/scene_collision_model.h moved to gplanner/planner/scene/scene_collision_model.h
+// Deprecated since 0.2.0, to be removed in 0.6: gplanner/planner/scene_collision_model.h moved to gplanner/planner/scene/scene_collision_model.h
 // (planner/ is split by stage); include that instead.
 #pragma message("gplanner/planner/scene_collision_model.h is deprecated (gplanner 0.2.0): include gplanner/planner/scene/scene_collision_model.h")
 #include "gplanner/planner/scene/scene_collision_model.h"

@@ -64,6 +64,6 @@ double roadmap_bytes(std::size_t milestones, int width, int neighbors);
 
 }  // namespace gplanner
 
-// Deprecated since 0.2.0 (to be removed in 0.5): save_roadmap, load_roadmap and
+// Deprecated since 0.2.0 (to be removed in 0.6): save_roadmap, load_roadmap and
 // scene_fingerprint moved to gplanner/planner/output/roadmap_file.h; include that.
 #include "gplanner/planner/output/roadmap_file.h"

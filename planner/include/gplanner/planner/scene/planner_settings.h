@@ -41,7 +41,7 @@ struct PlannerSettings {
 
   // The value of a setting by its key in config/planner.yaml ("roadmap.milestones");
   // throws std::out_of_range for a key it does not define.
-  [[deprecated("read the typed member instead (since 0.2.0); to be removed in 0.5")]] double number(
+  [[deprecated("read the typed member instead (since 0.2.0); to be removed in 0.6")]] double number(
       const std::string& key) const;
 
  private:

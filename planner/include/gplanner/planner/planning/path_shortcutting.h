@@ -41,7 +41,8 @@ double shortcut_path(const ConfigurationSpace& space, LocalPlanner* local, Local
 // rounds have run (shortened_failed: the shortened path is known to fail its
 // certification, so that only the earlier rounds' paths are certified). The given path
 // must then be certified (a path it returns is the given one, an earlier round's, or
-// one of certified shortcuts made from the given one); rng as after the rounds.
+// one of certified shortcuts made from the given one); where the rounds run again,
+// certified, *rng starts from done.rng_before.
 struct ShortcutRounds {
   std::vector<float> given;                 // the path the rounds started from
   std::vector<float> shortened;             // the last round's path

@@ -60,6 +60,21 @@ GP_HD bool ray_meets_box(const BvhNode& n, V3d p, V3d d) {
   return true;
 }
 
+// Whether p lies in node n's box, in double, the box grown as ray_meets_box grows it. A
+// point outside a solid component's root box is outside the component: its rays are not
+// cast (a link's points near a shelf lie in the shelf's axis-aligned box, seldom in its
+// own box).
+GP_HD bool point_in_node_box(const BvhNode& n, V3d p) {
+  const V3d c{n.center[0], n.center[1], n.center[2]};
+  const V3d pc = p - c;
+  const double slack = 1e-5 * (n.radius + std::sqrt(geometry::dot(c, c)));
+  for (int i = 0; i < 3; ++i) {
+    const V3d axis{n.axes[i], n.axes[3 + i], n.axes[6 + i]};
+    if (std::fabs(geometry::dot(axis, pc)) > double(n.extent[i]) + slack) return false;
+  }
+  return true;
+}
+
 // How the ray p + t d (t > 0) crosses triangle tri, in double (Moller-Trumbore): +1
 // through its front (its normal, counter-clockwise, along d), -1 through its back, 0
 // when it misses.
@@ -114,10 +129,11 @@ GP_HD bool point_in_solid(const SolidsView& s, const Component& c, V3d p) {
 // Whether some component of body A lies inside a solid component of body B, given that
 // their surfaces do not come within the threshold; X_BA places A in B's frame, margin
 // grows every box test. A's point tree against B's solid tree, depth first (a point
-// against a box directly, in B's frame); a point in a solid component's box is handed
-// to point_test(c, p) (p in B's frame), which says whether it lies inside c (true ends
-// the walk): components_inside below tests it at once, the GPU's balanced traversal
-// queues it for a thread of its own per ray.
+// against a box directly, in B's frame); a point in a solid component's axis-aligned
+// box and in its BVH's root box (point_in_node_box) is handed to point_test(c, p) (p in
+// B's frame), which says whether it lies inside c (true ends the walk):
+// components_inside below tests it at once, the GPU's balanced traversal queues it for a
+// thread of its own per ray.
 template <typename T, typename PointTest>
 GP_HD bool components_inside_by(const SolidsView& s, BodySolids a, BodySolids b,
                                 const geometry::Transform<T>& X_BA, T margin,
@@ -148,7 +164,9 @@ GP_HD bool components_inside_by(const SolidsView& s, BodySolids a, BodySolids b,
         continue;
       if (nb.is_leaf()) {
         const V3d p{double(p_B.x), double(p_B.y), double(p_B.z)};
-        if (point_test(nb.component(), p)) return true;
+        const Component& c = s.components[nb.component()];
+        if (point_in_node_box(s.nodes[c.solid_node_offset], p) && point_test(nb.component(), p))
+          return true;
         continue;
       }
       stack_a[top] = ia;

@@ -62,8 +62,9 @@ GP_HD bool ray_meets_box(const BvhNode& n, V3d p, V3d d) {
 
 // Whether p lies in node n's box, in double, the box grown as ray_meets_box grows it. A
 // point outside a solid component's root box is outside the component: its rays are not
-// cast (a link's points near a shelf lie in the shelf's axis-aligned box, seldom in its
-// own box).
+// cast (MotionBenchMaker's box 0001, 256 Panda configurations on one core: link 6's
+// containment work 139 to 25 us, its points in obstacles' axis-aligned boxes but seldom
+// in their oriented ones).
 GP_HD bool point_in_node_box(const BvhNode& n, V3d p) {
   const V3d c{n.center[0], n.center[1], n.center[2]};
   const V3d pc = p - c;

@@ -100,6 +100,10 @@ std::vector<float> kept_path(const ConfigurationSpace& space, const std::vector<
 
 }  // namespace
 
+std::mt19937_64 shortcut_generator(std::uint64_t seed) {
+  return std::mt19937_64(seed ^ 0x5bd1e995u);
+}
+
 double path_length(const ConfigurationMetric& metric, const std::vector<float>& path, int width) {
   double length = 0;
   const std::size_t m = path.size() / width;

@@ -472,9 +472,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     if (options_.shortcut_rounds > 0) {
       StageTimer timer(&result.times.shortcutting, &result.gpu_calls.shortcutting, *checker_,
                        neighbors_);
-      // Its own generator: the sampler's position depends on how many attempts the
-      // time-sized batches made.
-      std::mt19937_64 shortcut_rng(options_.seed ^ 0x5bd1e995u);
+      std::mt19937_64 shortcut_rng = shortcut_generator(options_.seed);
       result.length = shortcut_path(
           scene_.space, &local_, &fine, certifies_path() ? &certifier_ : nullptr,
           options_.shortcut_rounds, options_.shortcut_candidates, &shortcut_rng, &result.path);

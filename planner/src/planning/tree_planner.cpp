@@ -20,8 +20,6 @@ using Clock = std::chrono::steady_clock;
 // Where calls have a fixed cost, a round's lanes fill about half of it in rows (a call
 // costs about the same up to there), within these bounds.
 constexpr std::size_t kMinLanes = 8, kMaxLanes = 512;
-// The shortcut rounds' generator: the plan's seed with these bits flipped.
-constexpr std::uint64_t kShortcutSeed = 0x5bd1e995u;
 // Nearest-node distances a round computes from which its lanes run on all threads, and
 // rows it interpolates from which its rows are written on all threads: about half a
 // millisecond of work (a nanosecond a distance, ten a row for an arm), below which
@@ -343,7 +341,7 @@ TreePlanner::PathOutcome TreePlanner::finish_path(const std::vector<float>& path
     ShortcutRounds rounds;
     {
       StageTimer timer(&result->times.shortcutting, &result->gpu_calls.shortcutting, *checker_);
-      std::mt19937_64 shortcut_rng(kShortcutSeed ^ options_.seed);
+      std::mt19937_64 shortcut_rng = shortcut_generator(options_.seed);
       rounds = run_shortcut_rounds(scene_.space, &local_, fine, options_.shortcut_rounds,
                                    options_.shortcut_candidates, &shortcut_rng, path);
     }
@@ -479,7 +477,7 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
     result.length = path_length(local_.metric(), result.path, width);
     if (options_.shortcut_rounds > 0 && !shortened) {
       StageTimer timer(&result.times.shortcutting, &result.gpu_calls.shortcutting, *checker_);
-      std::mt19937_64 shortcut_rng(kShortcutSeed ^ options_.seed);
+      std::mt19937_64 shortcut_rng = shortcut_generator(options_.seed);
       result.length =
           failed_shortcut
               ? certify_shortcut_rounds(scene_.space, &local_, &fine, &certifier_,

@@ -18,6 +18,7 @@
 // configurations).
 // Stops, with the path as it is, when `local`'s stop condition says so.
 
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -27,6 +28,10 @@
 namespace gplanner {
 
 struct ConfigurationSpace;
+
+// The shortcut rounds' generator for a plan of seed `seed`: their own, so that the
+// rounds do not depend on how many draws the plan's time-sized batches made before.
+std::mt19937_64 shortcut_generator(std::uint64_t seed);
 
 // path: shape [waypoints, width], start and goal kept; returns the metric length after.
 // certify: null, or the certified check that replaces fine's.

@@ -57,8 +57,9 @@ std::int32_t NearestNodeIndex::nearest(const float* nodes, const float* q, Skip 
                                        Stop stop) const {
   std::int32_t best = -1;
   float best_distance = 0;
-  float distances[kPollNodes < 1024 ? kPollNodes : 1024];
-  constexpr std::size_t kBlock = sizeof(distances) / sizeof(float);
+  constexpr std::size_t kBlock = 1024;  // distances a pass computes before it compares
+  static_assert(kPollNodes % kBlock == 0, "the stop is asked between blocks");
+  float distances[kBlock];
   for (std::size_t begin = 0; begin < size_; begin += kBlock) {
     const std::size_t end = begin + kBlock < size_ ? begin + kBlock : size_;
     if (begin > 0 && begin % kPollNodes == 0 && stop()) return -1;

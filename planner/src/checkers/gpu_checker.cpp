@@ -124,6 +124,14 @@ void GpuChecker::measure_routing(const Scene& scene) {
     r.host_threads_up_to = n;
   for (std::size_t n = 1; n <= r.host_threads_up_to && calling_thread(n) <= pool(n); n *= 2)
     r.calling_thread_up_to = n;
+  // The call's fixed cost over one configuration's: sizes 1, 1,024 and 4,096, where the
+  // cost has grown linear.
+  const double fixed = r.gpu_seconds.front();
+  const double per_configuration = (gpu(4096) - gpu(1024)) / (4096 - 1024);
+  r.call_cost =
+      per_configuration > 0
+          ? static_cast<std::size_t>(std::clamp(fixed / per_configuration, 256.0, 65536.0))
+          : 65536;
 }
 
 void GpuChecker::route(const float* configurations, std::size_t n, const float* clearances,

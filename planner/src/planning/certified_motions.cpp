@@ -33,11 +33,11 @@ CertifiedMotions::CertifiedMotions(const Scene& scene, CollisionChecker* checker
     : scene_(scene),
       checker_(checker),
       bound_(scene.robot, scene.space),
-      // The first batch of ends, before any is timed: 256, or half what a call costs where
-      // calls cost (an end may need a plain check besides its clearances), as the local
-      // planner's.
+      // The first batch of ends, before any is timed: 256, or twice what a call costs
+      // where calls cost (half the local planner's: an end may need a plain check
+      // besides its clearances).
       batch_size_(options.batch_seconds,
-                  std::max<std::size_t>(256, checker->configurations_per_call_cost() / 2), 64,
+                  std::max<std::size_t>(256, 2 * checker->configurations_per_call_cost()), 64,
                   std::max<std::size_t>(options.max_batch, 64)) {
   step_ = options.step;
   if (!(step_ > 0)) {
@@ -92,12 +92,12 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
   CertifiedMotionStats stats;
   stats.motions = count;
   // Where a call has a fixed cost (the GPU's: on the MotionBenchMaker Panda a call of a
-  // few dozen ends takes 0.5 ms, as long as one of thousands), a round is one call: its
-  // ends checked with their clearances and, in the same call, without (whether an end
-  // that fails its clearance collides itself), and segments that fail are cut into
-  // quarters rather than halves, reaching a given length in half the rounds. On the CPU
-  // backends, where a check costs its work alone, the plain checks are of the ends that
-  // failed only, and segments are halved.
+  // few dozen ends costs as much as one of 2,000 more), a round is one call where its
+  // ends number fewer than that: its ends checked with their clearances and, in the same
+  // call, without (whether an end that fails its clearance collides itself); and
+  // segments that fail are cut into quarters rather than halves, reaching a given length
+  // in half the rounds. On the CPU backends, where a check costs its work alone, the
+  // plain checks are of the ends that failed only, and segments are halved.
   const std::size_t call_cost = checker_->configurations_per_call_cost();
   const int cuts = call_cost > 0 ? 4 : 2;
   std::vector<float> ends, clearances;
@@ -137,7 +137,8 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
       if (!s.good1) end_index[2 * i + 1] = add_end(s.t1);
     }
     const std::size_t n_ends = ends.size() / width;
-    const bool one_call = call_cost > 0 && 2 * n_ends <= call_cost;
+    // One call where the plain checks add fewer rows than a call costs.
+    const bool one_call = call_cost > 0 && n_ends <= call_cost;
     if (one_call) {  // the same ends again, with no clearance
       ends.insert(ends.end(), ends.begin(), ends.end());
       clearances.resize(2 * clearances.size(), 0.0f);

@@ -13,16 +13,19 @@ namespace {
 constexpr std::size_t kMaxWaypoints = 256;
 constexpr std::size_t kNone = ~std::size_t(0);
 
-// The shortcuts a round proposes on a path, each with the segment count it is first
-// checked at.
+// The shortcuts a round proposes on a path, with their segment counts.
 struct Proposal {
   std::vector<std::pair<std::size_t, std::size_t>> pairs;  // waypoint indices (i, j)
   std::vector<float> from, to;                             // shape [pairs, width]
-  std::vector<int> segments;       // at the resolution they are first checked at
+  std::vector<int> segments;                               // at the (coarse) resolution of `local`
   std::vector<int> fine_segments;  // at the fine resolution
   // Checked at the fine resolution at once (no second check): where calls cost more
-  // than the extra samples and the fine samples fit one call.
+  // than the extra samples and the fine samples fit one call. The coarse samples are
+  // then checked too where they are not among the fine ones (coarse_too: those
+  // shortcuts), so that a shortcut passes exactly where the two stages, coarse then
+  // fine, would pass it: the same paths whatever a call costs.
   bool fine_at_once = false;
+  std::vector<std::size_t> coarse_too;
   // Every shortcut of the path (no random choice): a round that leaves the path as it
   // was would propose and find the same again.
   bool all_pairs = false;
@@ -54,19 +57,48 @@ Proposal propose(const std::vector<float>& path, int width, int candidates, Loca
   p.to.resize(n * width);
   p.segments.resize(n);
   p.fine_segments.resize(n);
-  std::size_t coarse_samples = 0, fine_samples = 0;
+  // Samples at the coarse resolution, and at the fine one together with the coarse ones
+  // that are not among them.
+  std::size_t coarse_samples = 0, at_once_samples = 0;
   for (std::size_t k = 0; k < n; ++k) {
     std::copy_n(&path[p.pairs[k].first * width], width, &p.from[k * width]);
     std::copy_n(&path[p.pairs[k].second * width], width, &p.to[k * width]);
     p.segments[k] = local->segments(&p.from[k * width], &p.to[k * width]);
     p.fine_segments[k] = fine->segments(&p.from[k * width], &p.to[k * width]);
     coarse_samples += p.segments[k] - 1;
-    fine_samples += p.fine_segments[k] - 1;
+    at_once_samples += p.fine_segments[k] - 1;
+    if (p.fine_segments[k] % p.segments[k] != 0) at_once_samples += p.segments[k] - 1;
   }
-  p.fine_at_once = !certified && fine_samples <= fine->one_batch_samples() &&
-                   fine_samples < coarse_samples + local->configurations_per_call_cost();
-  if (p.fine_at_once) p.segments = p.fine_segments;
+  p.fine_at_once = !certified && at_once_samples <= fine->one_batch_samples() &&
+                   at_once_samples < coarse_samples + local->configurations_per_call_cost();
+  if (p.fine_at_once) {
+    for (std::size_t k = 0; k < n; ++k)
+      if (p.fine_segments[k] % p.segments[k] != 0) p.coarse_too.push_back(k);
+  }
   return p;
+}
+
+// Appends the motions that check a proposal's shortcuts: each at the resolution it is
+// first checked at, then the coarse_too ones at the coarse resolution.
+void append_checks(const Proposal& p, int width, std::vector<float>* a, std::vector<float>* b,
+                   std::vector<int>* segments) {
+  a->insert(a->end(), p.from.begin(), p.from.end());
+  b->insert(b->end(), p.to.begin(), p.to.end());
+  const std::vector<int>& first = p.fine_at_once ? p.fine_segments : p.segments;
+  segments->insert(segments->end(), first.begin(), first.end());
+  for (const std::size_t k : p.coarse_too) {
+    a->insert(a->end(), &p.from[k * width], &p.from[(k + 1) * width]);
+    b->insert(b->end(), &p.to[k * width], &p.to[(k + 1) * width]);
+    segments->push_back(p.segments[k]);
+  }
+}
+
+// Each shortcut's verdict from those of the motions append_checks gave.
+std::vector<std::uint8_t> shortcut_verdicts(const Proposal& p, const std::uint8_t* checks) {
+  std::vector<std::uint8_t> invalid(checks, checks + p.pairs.size());
+  for (std::size_t c = 0; c < p.coarse_too.size(); ++c)
+    if (checks[p.pairs.size() + c]) invalid[p.coarse_too[c]] = 1;
+  return invalid;
 }
 
 // The waypoints on the way that ends at the last one (by `parent`), first to last.
@@ -147,10 +179,14 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
       have_ahead = false;
     } else {
       p = propose(*path, width, candidates, local, fine, certify != nullptr, rng);
-      invalid.resize(p.pairs.size());
-      if (!local->check_motions(p.from.data(), p.to.data(), p.pairs.size(), p.segments.data(),
-                                invalid.data()))
+      std::vector<float> a, b;
+      std::vector<int> segments;
+      append_checks(p, width, &a, &b, &segments);
+      std::vector<std::uint8_t> checks(segments.size());
+      if (!local->check_motions(a.data(), b.data(), segments.size(), segments.data(),
+                                checks.data()))
         break;
+      invalid = shortcut_verdicts(p, checks.data());
     }
     const bool refine = round + 1 < rounds;  // midpoints, unless the path has too many
     auto d = [&](std::size_t i, std::size_t j) {
@@ -205,9 +241,7 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
           const std::vector<float> if_passed = kept_path(space, *path, kept, refined);
           if (if_passed.size() / width >= 3) {
             next = propose(if_passed, width, candidates, local, fine, false, rng);
-            a.insert(a.end(), next.from.begin(), next.from.end());
-            b.insert(b.end(), next.to.begin(), next.to.end());
-            segments.insert(segments.end(), next.segments.begin(), next.segments.end());
+            append_checks(next, width, &a, &b, &segments);
             with_next = true;
           }
         }
@@ -231,7 +265,7 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
       }
       if (with_next && all_passed) {
         ahead = std::move(next);
-        ahead_invalid.assign(fails.begin() + unchecked.size(), fails.end());
+        ahead_invalid = shortcut_verdicts(ahead, fails.data() + unchecked.size());
         have_ahead = true;
       } else if (with_next) {
         *rng = rng_before;

@@ -17,8 +17,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Where calls have a fixed cost, a round's lanes fill about half of it in rows (a call
-// costs about the same up to there), within these bounds.
+// Where calls have a fixed cost, a round's lanes fill about this many rows, within these
+// bounds. A constant, not the checker's measured call cost: the lanes shape the trees,
+// and a seed plans the same trees whatever a call's timing (4,096 rows: half the 8,192 a
+// GPU call was once priced at, which MotionBenchMaker's cage planned best with).
+constexpr std::size_t kRowsPerRound = 4096;
 constexpr std::size_t kMinLanes = 8, kMaxLanes = 512;
 // Nearest-node distances a round computes from which its lanes run on all threads, and
 // rows it interpolates from which its rows are written on all threads: about half a
@@ -442,10 +445,10 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
     }
     ++result.edge_batches;
     result.edges_checked += 2 * lanes.size();
-    // Where a call has a fixed cost, the next round's lanes fill about that many rows.
+    // Where a call has a fixed cost, the next round's lanes fill about kRowsPerRound rows.
     if (options_.tree_lanes == 0 && call_cost > 0 && row_count > 0) {
       const double rows_per_lane = static_cast<double>(row_count) / lanes.size();
-      lanes_ = std::clamp<std::size_t>(static_cast<std::size_t>(call_cost / 2 / rows_per_lane),
+      lanes_ = std::clamp<std::size_t>(static_cast<std::size_t>(kRowsPerRound / rows_per_lane),
                                        kMinLanes, kMaxLanes) &
                ~std::size_t(1);
     }

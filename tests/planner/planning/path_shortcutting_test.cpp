@@ -1,10 +1,11 @@
 // Path shortcutting: a lazy PRM path shortened on checkers whose calls cost nothing,
 // a few thousand samples and as much as many samples (as the GPU's do): every shortened path is
 // free at a tenth of the edge resolution; checking the next round's shortcuts with this round's
-// fine check gives the same path in fewer calls; checking every shortcut finely at once takes one
-// call a round. Certified shortcutting certifies the path its rounds give in one certification,
-// and where that fails (a shortcut free at the samples, through an obstacle between them) runs
-// the rounds again with every shortcut certified: the path it returns is certified either way.
+// fine check gives the same path in fewer calls; checking every shortcut at both resolutions at
+// once takes one call a round, for the same path. Certified shortcutting certifies the path its
+// rounds give in one certification, and where that fails (a shortcut free at the samples, through
+// an obstacle between them) runs the rounds again with every shortcut certified: the path it
+// returns is certified either way.
 
 #include "gplanner/planner/planning/path_shortcutting.h"
 
@@ -73,8 +74,10 @@ TEST(PathShortcutting, FewerCallsWhereCallsCostMoreThanSamples) {
     calls[c] = local.stats().batches + fine.stats().batches;
     if (c > 0) EXPECT_EQ(fine.stats().batches, 0u);  // every call through `local`
   }
-  // Checking the next round's shortcuts early changes nothing but the number of calls.
+  // Checking the next round's shortcuts early, or every shortcut at both resolutions at
+  // once, changes nothing but the number of calls.
   EXPECT_EQ(paths[1], paths[0]);
+  EXPECT_EQ(paths[2], paths[0]);
   EXPECT_LT(calls[1], calls[0]);
   EXPECT_LE(calls[2], static_cast<std::size_t>(rounds));  // one call a round
   EXPECT_LT(calls[2], calls[0]);
@@ -152,6 +155,79 @@ goal:
   EXPECT_GT(certify.stats().motions, path.size() / scene.space.width() - 1);
   EXPECT_TRUE(certified_whole(scene, &cpu, options, path));
   for (std::size_t w = 0; w < path.size() / 7; ++w) EXPECT_FALSE(cpu.in_collision(&path[w * 7]));
+}
+
+// A checker that finds one configuration colliding (exactly that one: a thin obstacle
+// that only one sample touches), every other free; its calls cost `per_call`.
+class OneColliding : public CollisionChecker {
+ public:
+  OneColliding(std::vector<float> colliding, std::size_t per_call)
+      : colliding_(std::move(colliding)), per_call_(per_call) {}
+  std::string backend() const override { return "cpu"; }
+  void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override {
+    const std::size_t width = colliding_.size();
+    for (std::size_t i = 0; i < n; ++i)
+      verdicts[i] = std::equal(colliding_.begin(), colliding_.end(), configurations + i * width);
+  }
+  void check_clearances(const float* configurations, std::size_t n, const float*,
+                        std::uint8_t* verdicts) override {
+    check(configurations, n, verdicts);
+  }
+  std::size_t configurations_per_call_cost() const override { return per_call_; }
+  std::size_t cheap_calls_up_to() const override { return 0; }
+
+ private:
+  std::vector<float> colliding_;
+  std::size_t per_call_;
+};
+
+TEST(PathShortcutting, ShortcutsCheckedAtOnceKeepTheirCoarseSamples) {
+  // The block scene's cube, flying: a path of a detour (start, aside, goal) whose one
+  // shortcut (start to goal) has a coarse sample that no fine sample matches. Where
+  // that sample collides, the two stages (coarse, then fine) reject the shortcut; a
+  // round that checks it at once at the fine resolution must too, whatever a call costs.
+  const testing::ScratchFolder folder;
+  folder.write("cube.obj", testing::kCubeObj);
+  const std::string file = folder.write("scene.yaml", R"(name: free
+robot:
+  mesh: cube.obj
+bounds:
+  min: [-2, -2, -1]
+  max: [2, 2, 1]
+start:
+  base: {xyz: [-1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
+goal:
+  base: {xyz: [1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
+)");
+  const Scene scene = load_scene(file);
+  const PlanOptions options = plan_options(scene);
+  LocalPlannerOptions fine_options = options.local;
+  fine_options.resolution_fraction /= options.final_check_refinement;
+  const int width = scene.space.width();
+  std::vector<float> path;
+  for (const float y : {0.0f, 0.5f, 0.0f}) path.insert(path.end(), {-1, y, 0, 1, 0, 0, 0});
+  // The goal's x: one whose shortcut's fine segments are no multiple of its coarse ones.
+  OneColliding probe({}, 0);
+  LocalPlanner coarse_probe(scene, &probe, options.local), fine_probe(scene, &probe, fine_options);
+  int coarse = 0, fine_count = 0;
+  for (float x = 1; x > -0.5f; x -= 0.01f) {
+    path[2 * width] = x;
+    coarse = coarse_probe.segments(&path[0], &path[2 * width]);
+    fine_count = fine_probe.segments(&path[0], &path[2 * width]);
+    if (coarse >= 2 && fine_count % coarse != 0) break;
+  }
+  ASSERT_GE(coarse, 2);
+  ASSERT_NE(fine_count % coarse, 0);
+  std::vector<float> sample(width);
+  scene.space.interpolate(&path[0], &path[2 * width], 1.0 / coarse, sample.data());
+  for (const std::size_t per_call : {std::size_t(0), std::size_t(1) << 20}) {
+    OneColliding checker(sample, per_call);
+    LocalPlanner local(scene, &checker, options.local), fine(scene, &checker, fine_options);
+    std::vector<float> shortened = path;
+    std::mt19937_64 rng(1);
+    shortcut_path(scene.space, &local, &fine, nullptr, 1, 64, &rng, &shortened);
+    EXPECT_EQ(shortened, path) << "call cost " << per_call;
+  }
 }
 
 }  // namespace

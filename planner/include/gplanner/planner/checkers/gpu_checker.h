@@ -30,6 +30,10 @@ struct HostCallRouting {
   std::size_t calling_thread_up_to = 0;  // calls of up to this many: the calling thread
   std::size_t host_threads_up_to = 0;    // up to this many: the host's thread pool
   bool measured = false;                 // false: set by GpuCheckerOptions::host_calls_up_to
+  // What a GPU call costs by itself, in configurations: its fixed cost (a call of one
+  // configuration) over the cost of one more (between calls of 1,024 and 4,096), within
+  // [256, 65,536]; 8,192 where not measured. configurations_per_call_cost() answers it.
+  std::size_t call_cost = 8192;
   // The measurements (seconds per call), at the sizes measured.
   double host_seconds_per_configuration = 0;  // one thread, the scene's uniform samples
   std::vector<std::size_t> sizes;             // shape [k]
@@ -53,9 +57,9 @@ class GpuChecker : public CollisionChecker {
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override;
   void check_clearances(const float* configurations, std::size_t n, const float* clearances,
                         std::uint8_t* verdicts) override;
-  // Calls beyond the host's crossover cost about the same up to thousands of
-  // configurations (benchmarks/history/tuning_notes.md, "GPU call cost").
-  std::size_t configurations_per_call_cost() const override { return 8192; }
+  // Measured on the scene with the routing (HostCallRouting::call_cost): a Panda's call on
+  // an H200 costs about 0.12 ms plus 0.06 ms per 1,000 configurations, about 2,000.
+  std::size_t configurations_per_call_cost() const override { return routing_.call_cost; }
   // Calls the host answers: no GPU call's fixed cost.
   std::size_t cheap_calls_up_to() const override { return routing_.host_threads_up_to; }
   CollisionChecker* host_checker() override { return &host_only_; }

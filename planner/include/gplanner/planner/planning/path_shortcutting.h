@@ -8,8 +8,10 @@
 // by less than 0.1 % end them early. Where the checker's calls cost more than
 // samples (the GPU), the next round's shortcuts are checked in the same call as this
 // round's fine check (dropped if that fails: the same path, fewer calls), and a round
-// checks every shortcut with `fine` alone, in one call, where that adds fewer samples
-// than a call costs. A path valid at fine's resolution stays so. With `certify`, the
+// checks every shortcut at both resolutions in one call (fine's samples and those of
+// `local` not among them: the verdicts of the two stages) where that adds fewer samples
+// than a call costs: the path does not depend on what a call costs. A path valid at
+// fine's resolution stays so. With `certify`, the
 // path the rounds give is certified whole at the end (one certification, a few calls);
 // where that fails, the last earlier round's path that passes whole (all certified in
 // one certification), and where none does, the rounds again from the given path with

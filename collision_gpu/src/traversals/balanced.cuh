@@ -104,8 +104,9 @@ class BalancedTraversal {
   void launch_roots(const CollisionModelView& m, const float* d_q, int n, std::uint8_t* d_verdicts,
                     GpuCheckStats* stats);
   // The containment step of the jobs whose queries the traversal left free; `jobs`: at
-  // least the jobs emitted (the kernel reads their count on the device).
-  void run_containment(const CollisionModelView& m, std::size_t jobs, std::uint8_t* d_verdicts);
+  // least the jobs emitted (the kernel reads their count on the device); on `stream`.
+  void run_containment(const CollisionModelView& m, std::size_t jobs, std::uint8_t* d_verdicts,
+                       cudaStream_t stream = 0);
 
   int resident_task_blocks_ = 1;  // blocks of each kernel resident at once
   int resident_leaf_blocks_ = 1;
@@ -121,6 +122,12 @@ class BalancedTraversal {
   std::size_t job_capacity_ = 0, task_capacity_ = 0, children_capacity_ = 0, leaf_capacity_ = 0;
   std::size_t point_capacity_ = 0;
   int resident_ray_blocks_ = 1;
+
+  // A small batch's containment step runs on a stream of its own beside the traversal,
+  // from the roots kernel's end (roots_done_) to its own (containment_done_), for which
+  // the default stream waits.
+  cuda::Stream containment_stream_;
+  cuda::Event roots_done_{cudaEventDisableTiming}, containment_done_{cudaEventDisableTiming};
 
   cuda::DeviceBuffer<BalancedState> state_;
   cuda::DeviceBuffer<Job> jobs_;

@@ -35,7 +35,7 @@ struct HostCallRouting {
   // [256, 65,536]; 8,192 where not measured. configurations_per_call_cost() answers it.
   std::size_t call_cost = 8192;
   // The measurements (seconds per call), at the sizes measured.
-  double host_seconds_per_configuration = 0;  // one thread, the scene's uniform samples
+  double host_seconds_per_configuration = 0;  // one thread, the scene's free uniform samples
   std::vector<std::size_t> sizes;             // shape [k]
   std::vector<double> gpu_seconds;            // shape [k]: a GPU call of sizes[i] (median)
   // shape [k]: a host call of sizes[i] (median; 1e30 where not timed: the sizes after
@@ -60,8 +60,8 @@ class GpuChecker : public CollisionChecker {
   // Measured on the scene with the routing (HostCallRouting::call_cost): a Panda's call on
   // an H200 costs about 0.12 ms plus 0.06 ms per 1,000 configurations, about 2,000.
   std::size_t configurations_per_call_cost() const override { return routing_.call_cost; }
-  // Calls the host answers: no GPU call's fixed cost.
-  std::size_t cheap_calls_up_to() const override { return routing_.host_threads_up_to; }
+  // Calls the host answers: no GPU call's fixed cost (host_calls_up_to()).
+  std::size_t cheap_calls_up_to() const override { return host_calls_up_to(); }
   CollisionChecker* host_checker() override { return &host_only_; }
   std::size_t device_calls() const override { return device_calls_.load(); }
   int gpu_device() const override { return gpu_.devices().front(); }
@@ -72,6 +72,16 @@ class GpuChecker : public CollisionChecker {
   std::vector<int> devices() const { return gpu_.devices(); }
   Traversal traversal() const { return traversal_; }
   const HostCallRouting& routing() const { return routing_; }
+  // Calls of up to this many configurations go to the host: routing().host_threads_up_to,
+  // or, where the routing was measured, the largest size (a power of two, up to it) at
+  // which the host's measured time, scaled by host_cost_ratio(), beats the GPU's (one
+  // configuration at least, where the routing sent that to the host).
+  std::size_t host_calls_up_to() const;
+  // What the host's calls have cost per configuration, over what the routing measured
+  // on the scene's free uniform samples: a running mean over the host's calls (a plan's
+  // motions run near obstacles, where a configuration costs the host several times
+  // more), from 1.
+  double host_cost_ratio() const { return host_cost_ratio_.load(std::memory_order_relaxed); }
 
  private:
   // The host core, for host_checker(): calls routed as route() routes them, except that
@@ -108,6 +118,7 @@ class GpuChecker : public CollisionChecker {
   HostCallRouting routing_;
   HostOnly host_only_{this};
   std::atomic<std::size_t> device_calls_{0};
+  std::atomic<double> host_cost_ratio_{1.0};
 };
 
 }  // namespace gplanner

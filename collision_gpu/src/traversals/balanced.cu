@@ -455,8 +455,9 @@ __global__ void balanced_start_kernel(BalancedState* d_state, unsigned task_capa
   advance_queue(c, task_capacity, max_launch);
 }
 
-// After the traversal, the containment step (detail::body_contained) of every job whose
-// query no surface test found colliding, in two kernels. The first walks the component
+// After the traversal (beside it, on a stream of its own, for a small batch:
+// enqueue_small), the containment step (detail::body_contained) of every job whose query
+// no surface test has found colliding, in two kernels. The first walks the component
 // trees, two threads a job, one for each direction (a component of A inside a solid of
 // B, one of B inside a solid of A), on the job's own transform, and queues every point
 // that lies in a solid's box; the second runs each queued point's three rays a thread

@@ -5,9 +5,9 @@
 // between and within its calls.
 //
 // For each scene: the gpu backend's routing (measured when the checker is made), then
-// `gplan plan`'s planner (auto) run --repeat times with the same checker (one line each:
-// plan time, stage times, calls, the time inside them, the path's length), then the last
-// run's calls, one line each.
+// `gplan plan`'s planner (auto) run --repeat times with the same checker, a planner made
+// anew each time (one line each: plan time, stage times, calls, the time inside them, the
+// path's length), then the last run's calls, one line each.
 //
 // usage: gplanner_plan_calls SCENE... [--backend gpu|cpu|fcl] [--repeat R] [--seed S]
 
@@ -136,9 +136,10 @@ int main(int argc, char** argv) {
     const std::unique_ptr<gplanner::NeighborFinder> neighbors = gplanner::make_neighbor_finder(
         gplanner::make_metric(scene.space, scene.planner), checker->backend(), nullptr,
         std::max(0, checker->gpu_device()));
-    gplanner::ChosenPlanner planner(scene, &recording, neighbors.get(),
-                                    gplanner::PlannerKind::kAuto, false, options);
     for (int r = 0; r < repeat; ++r) {
+      // A planner of its own each run: the same plan again, on a checker already warm.
+      gplanner::ChosenPlanner planner(scene, &recording, neighbors.get(),
+                                      gplanner::PlannerKind::kAuto, false, options);
       recording.start();
       const gplanner::PlanResult result = planner.solve(scene.start.data(), scene.goal.data());
       double in_calls = 0;

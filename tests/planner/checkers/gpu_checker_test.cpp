@@ -228,6 +228,43 @@ TEST(GpuChecker, RoutesCallsOfEverySizeByMeasuredCrossovers) {
   }
 }
 
+TEST(GpuChecker, MeasuresItsCallCostAndLearnsWhatHostCallsCost) {
+  REQUIRE_GPU();
+  int learnt = 0;
+  for (const char* name : {"piano.yaml", "pr2_base_arm.yaml"}) {
+    const Scene scene = load_scene(testing::project_root() + "/scenes/" + name);
+    // Where the routing is set, not measured: the constant call cost, no learning.
+    GpuChecker fixed(scene, kGpuOnly);
+    EXPECT_EQ(fixed.configurations_per_call_cost(), 8192u) << name;
+    EXPECT_EQ(fixed.host_calls_up_to(), 0u) << name;
+    fixed.check(scene.start.data(), 1, std::vector<std::uint8_t>(1).data());
+    EXPECT_EQ(fixed.host_cost_ratio(), 1.0) << name;
+    // Measured: the cost within its bounds, the ratio from 1.
+    GpuChecker routed(scene, GpuCheckerOptions{});
+    const HostCallRouting& r = routed.routing();
+    EXPECT_EQ(routed.configurations_per_call_cost(), r.call_cost) << name;
+    EXPECT_GE(r.call_cost, 256u) << name;
+    EXPECT_LE(r.call_cost, 65536u) << name;
+    EXPECT_EQ(routed.host_cost_ratio(), 1.0) << name;
+    if (r.host_threads_up_to == 0) continue;
+    // Single states stay on the host, whatever they cost, and teach the ratio.
+    const std::size_t calls_before = routed.device_calls();
+    std::uint8_t verdict = 0;
+    for (int k = 0; k < 20; ++k) routed.check(scene.start.data(), 1, &verdict);
+    EXPECT_EQ(verdict, 0) << name;
+    EXPECT_EQ(routed.device_calls(), calls_before) << name;
+    const double ratio = routed.host_cost_ratio();
+    EXPECT_NE(ratio, 1.0) << name;
+    EXPECT_GE(ratio, 0.25) << name;
+    EXPECT_LE(ratio, 1000.0) << name;
+    EXPECT_GE(routed.host_calls_up_to(), 1u) << name;
+    EXPECT_LE(routed.host_calls_up_to(), r.host_threads_up_to) << name;
+    EXPECT_EQ(routed.cheap_calls_up_to(), routed.host_calls_up_to()) << name;
+    ++learnt;
+  }
+  EXPECT_GT(learnt, 0) << "no scene's routing put single states on the host";
+}
+
 TEST(GpuChecker, AnswersAnEmptyBatch) {
   REQUIRE_GPU();
   const Scene scene = load_scene(testing::project_root() + "/scenes/helicopter.yaml");

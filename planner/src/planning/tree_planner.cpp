@@ -19,8 +19,9 @@ using Clock = std::chrono::steady_clock;
 
 // Where calls have a fixed cost, a round's lanes fill about this many rows, within these
 // bounds. A constant, not the checker's measured call cost: the lanes shape the trees,
-// and a seed plans the same trees whatever a call's timing (4,096 rows: half the 8,192 a
-// GPU call was once priced at, which MotionBenchMaker's cage planned best with).
+// and a seed plans the same trees whatever a call's timing. Measured (H200, d87c831, 40
+// of MotionBenchMaker's cage problems): a median of 62 ms at 2,048 rows, 53 ms at 4,096,
+// 49 ms at 8,192, where pr2_base_arm and the humanoid took 15 and 17 % longer (seeds 1 to 5).
 constexpr std::size_t kRowsPerRound = 4096;
 constexpr std::size_t kMinLanes = 8, kMaxLanes = 512;
 // Nearest-node distances a round computes from which its lanes run on all threads, and

@@ -84,10 +84,7 @@ struct GpuBatchChecker::Impl {
   // one chunk under the memory cap.
   bool is_small(std::size_t n) const {
     if (n > kPinnedQueries) return false;
-    const bool is_balanced = options.traversal == Traversal::kBalanced;
-    if (chunk_size(n, bytes_per_query(true),
-                   is_balanced ? traversals::BalancedTraversal::kChunkShare : 0.9) < n)
-      return false;
+    if (chunk_size(n, bytes_per_query(true), chunk_share()) < n) return false;
     if (options.traversal == Traversal::kBasic) return true;
     return options.traversal == Traversal::kBalanced &&
            n <= balanced->small_batch_up_to(options.warp_per_pair_up_to);
@@ -152,6 +149,13 @@ struct GpuBatchChecker::Impl {
     return (view.width + links) * sizeof(float) + 1 + 4 * sizeof(unsigned);
   }
 
+  // The share of the memory cap a chunk's configurations and verdicts take: the balanced
+  // traversal's queues take most of the rest.
+  double chunk_share() const {
+    return options.traversal == Traversal::kBalanced ? traversals::BalancedTraversal::kChunkShare
+                                                     : 0.9;
+  }
+
   // Queries per chunk under the memory cap, for `bytes_per_query` of chunk-sized buffers.
   std::size_t chunk_size(std::size_t n, std::size_t bytes_per_query, double share) const {
     const std::size_t fit = static_cast<std::size_t>(share * memory_cap) / bytes_per_query;
@@ -169,8 +173,7 @@ struct GpuBatchChecker::Impl {
     const bool is_balanced = options.traversal == Traversal::kBalanced;
     const std::size_t width = view.width;
     const std::size_t links = h_clearances ? static_cast<std::size_t>(view.link_count) : 0;
-    std::size_t chunk = chunk_size(n, bytes_per_query(h_clearances != nullptr),
-                                   is_balanced ? traversals::BalancedTraversal::kChunkShare : 0.9);
+    std::size_t chunk = chunk_size(n, bytes_per_query(h_clearances != nullptr), chunk_share());
     if (is_balanced) balanced->reserve(chunk, memory_cap);
     configurations.reserve(chunk * width);
     if (h_clearances) {

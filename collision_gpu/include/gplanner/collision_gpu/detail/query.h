@@ -271,14 +271,25 @@ GP_HD bool spheres_may_touch(const CollisionModelView& m, int p, V3f ca_W, V3f c
 // body m.link_count + p the checked link pair p.
 GP_HD int body_count(const CollisionModelView& m) { return m.link_count + m.pair_count; }
 
-struct BodyRanges {
-  BodyRange a, b;
+// A checked body's two bodies' entries of one kind, A and B: the environment's and link
+// b's for body b < m.link_count, else the pair's two links'.
+template <typename T>
+struct BodyPair {
+  T a, b;
 };
 
-GP_HD BodyRanges body_ranges(const CollisionModelView& m, int body) {
-  if (body < m.link_count) return {m.environment, m.link_bodies[body]};
+template <typename T>
+GP_HD BodyPair<T> body_pair(const CollisionModelView& m, int body, const T& environment,
+                            const T* links) {
+  if (body < m.link_count) return {environment, links[body]};
   const int p = body - m.link_count;
-  return {m.link_bodies[m.pair_a[p]], m.link_bodies[m.pair_b[p]]};
+  return {links[m.pair_a[p]], links[m.pair_b[p]]};
+}
+
+using BodyRanges = BodyPair<BodyRange>;
+
+GP_HD BodyRanges body_ranges(const CollisionModelView& m, int body) {
+  return body_pair(m, body, m.environment, m.link_bodies);
 }
 
 // X_AB, body B in body A's frame; X_WL(l) gives link l's pose in the world.
@@ -299,14 +310,10 @@ GP_HD bool body_may_touch(const CollisionModelView& m, int body, SphereCentre c_
 }
 
 // The solid components of a checked body's two bodies, A and B as body_ranges names them.
-struct BodySolidsPair {
-  BodySolids a, b;
-};
+using BodySolidsPair = BodyPair<BodySolids>;
 
 GP_HD BodySolidsPair body_solids(const CollisionModelView& m, int body) {
-  if (body < m.link_count) return {m.environment_solids, m.link_solids[body]};
-  const int p = body - m.link_count;
-  return {m.link_solids[m.pair_a[p]], m.link_solids[m.pair_b[p]]};
+  return body_pair(m, body, m.environment_solids, m.link_solids);
 }
 
 // The containment step of one checked body (numbered as body_count's), once its two

@@ -116,23 +116,26 @@ TEST(PathShortcutting, CertifiedInOneCertificationOfTheShortenedPath) {
   EXPECT_EQ(certify.stats().motions, path.size() / scene.space.width() - 1);
 }
 
-TEST(PathShortcutting, CertifiedWhereAShortcutPassesItsSamplesThroughAnObstacle) {
+// A unit cube flying from (-1, 0, 0) to (1, 0, 0) within [-2, 2] x [-2, 2] x [-1, 1],
+// `obstacles` (a scene file's obstacles: section, or nothing) in its way.
+Scene flying_cube_scene(const std::string& obstacles) {
   const testing::ScratchFolder folder;
   folder.write("cube.obj", testing::kCubeObj);
-  const std::string file = folder.write("scene.yaml", R"(name: block
+  return load_scene(folder.write("scene.yaml", R"(name: flying_cube
 robot:
   mesh: cube.obj
-obstacles:
-  - box: [0.5, 0.5, 0.5]
-bounds:
+)" + obstacles + R"(bounds:
   min: [-2, -2, -1]
   max: [2, 2, 1]
 start:
   base: {xyz: [-1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
 goal:
   base: {xyz: [1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-)");
-  const Scene scene = load_scene(file);
+)"));
+}
+
+TEST(PathShortcutting, CertifiedWhereAShortcutPassesItsSamplesThroughAnObstacle) {
+  const Scene scene = flying_cube_scene("obstacles:\n  - box: [0.5, 0.5, 0.5]\n");
   CpuChecker cpu(scene);
   PlanOptions options = plan_options(scene);
   // Checks with no sample inside a motion, only its ends: every shortcut passes them,
@@ -182,24 +185,11 @@ class OneColliding : public CollisionChecker {
 };
 
 TEST(PathShortcutting, ShortcutsCheckedAtOnceKeepTheirCoarseSamples) {
-  // The block scene's cube, flying: a path of a detour (start, aside, goal) whose one
+  // The flying cube, nothing in its way: a path of a detour (start, aside, goal) whose one
   // shortcut (start to goal) has a coarse sample that no fine sample matches. Where
   // that sample collides, the two stages (coarse, then fine) reject the shortcut; a
   // round that checks it at once at the fine resolution must too, whatever a call costs.
-  const testing::ScratchFolder folder;
-  folder.write("cube.obj", testing::kCubeObj);
-  const std::string file = folder.write("scene.yaml", R"(name: free
-robot:
-  mesh: cube.obj
-bounds:
-  min: [-2, -2, -1]
-  max: [2, 2, 1]
-start:
-  base: {xyz: [-1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-goal:
-  base: {xyz: [1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-)");
-  const Scene scene = load_scene(file);
+  const Scene scene = flying_cube_scene("");
   const PlanOptions options = plan_options(scene);
   LocalPlannerOptions fine_options = options.local;
   fine_options.resolution_fraction /= options.final_check_refinement;

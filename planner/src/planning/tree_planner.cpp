@@ -17,13 +17,31 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Where calls have a fixed cost, a round's lanes fill about this many rows, within these
-// bounds. A constant, not the checker's measured call cost: the lanes shape the trees,
-// and a seed plans the same trees whatever a call's timing. Measured (H200, d87c831, 40
-// of MotionBenchMaker's cage problems): a median of 62 ms at 2,048 rows, 53 ms at 4,096,
-// 49 ms at 8,192, where pr2_base_arm and the humanoid took 15 and 17 % longer (seeds 1 to 5).
+// Where calls have a fixed cost, a round's lanes fill about rows_per_round(rounds done)
+// rows, within these bounds: kRowsPerRound in the first kRoundsPerDoubling rounds, then
+// twice as many every kRoundsPerDoubling rounds, up to 2^kMaxDoublings times as many.
+// Constants, not the checker's measured call cost: the lanes shape the trees, and a seed
+// plans the same trees whatever a call's timing. Easy problems end within a few rounds of
+// a few thousand rows, as cheap as a call gets. Hard ones check about as many rows in all
+// whatever a round holds (cage 0005: 1.1 million rows in 271 rounds at 4,096, 1.2 million
+// in 52 growing rounds), so larger rounds cost them fewer calls and fewer rounds of host
+// work. Measured (H200, 0333b7b against this, MotionBenchMaker's first 8 problems of each
+// scenario, cage 9 to 40, and the 8 slowest other problems of the 700):
+// - 4,096 rows throughout: cage's median 60.3 ms, the slow eight's 173 ms;
+// - doubling every 16 rounds up to 4 times: 45.9 and 107 ms;
+// - every 8 rounds up to 4 times: 42.7 and 94.9 ms;
+// - every 8 rounds up to 8 times (these constants): 42.6 and 82.0 ms;
+// - the other scenarios and the arms' shipped scenes within their spread (most of their
+//   plans end within 8 rounds: the same trees).
+// (At a fixed size, d87c831, cage: 62 ms at 2,048 rows, 53 at 4,096, 49 at 8,192, where
+// pr2_base_arm and the humanoid took 15 and 17 % longer.)
 constexpr std::size_t kRowsPerRound = 4096;
-constexpr std::size_t kMinLanes = 8, kMaxLanes = 512;
+constexpr std::size_t kRoundsPerDoubling = 8, kMaxDoublings = 3;
+constexpr std::size_t kMinLanes = 8, kMaxLanes = 8192;
+
+std::size_t rows_per_round(std::size_t rounds_done) {
+  return kRowsPerRound << std::min(kMaxDoublings, rounds_done / kRoundsPerDoubling);
+}
 // Nearest-node distances a round computes from which its lanes run on all threads, and
 // rows it interpolates from which its rows are written on all threads: about half a
 // millisecond of work (a nanosecond a distance, ten a row for an arm), below which
@@ -446,10 +464,11 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
     }
     ++result.edge_batches;
     result.edges_checked += 2 * lanes.size();
-    // Where a call has a fixed cost, the next round's lanes fill about kRowsPerRound rows.
+    // Where a call has a fixed cost, the next round's lanes fill about rows_per_round rows.
     if (options_.tree_lanes == 0 && call_cost > 0 && row_count > 0) {
       const double rows_per_lane = static_cast<double>(row_count) / lanes.size();
-      lanes_ = std::clamp<std::size_t>(static_cast<std::size_t>(kRowsPerRound / rows_per_lane),
+      const double rows_wanted = static_cast<double>(rows_per_round(result.rounds));
+      lanes_ = std::clamp<std::size_t>(static_cast<std::size_t>(rows_wanted / rows_per_lane),
                                        kMinLanes, kMaxLanes) &
                ~std::size_t(1);
     }

@@ -179,6 +179,37 @@ TEST(TreePlanner, OneCallARoundWhereCallsCost) {
   EXPECT_GE(planner.lanes(), 8u);
 }
 
+// Where calls cost, hard problems get larger rounds: about 4,096 rows a round in the first
+// 8 rounds, then twice as many every 8 rounds, up to 32,768 (a closed wall: the trees
+// never join, and every call is a round's).
+TEST(TreePlanner, RoundsGrowEveryEightRoundsWhereCallsCost) {
+  Problem p(testing::kCubeAndThinWallScene);
+  struct Recording : testing::CostlyCallChecker {
+    using CostlyCallChecker::CostlyCallChecker;
+    void check(const float* q, std::size_t n, std::uint8_t* verdicts) override {
+      sizes.push_back(n);
+      CostlyCallChecker::check(q, n, verdicts);
+    }
+    std::vector<std::size_t> sizes;
+  } recording(*p.scene, 8192);
+  constexpr std::size_t kRounds = 42;
+  PlanOptions options = p.options(1);
+  options.should_stop = [&] { return recording.sizes.size() >= kRounds; };
+  TreePlanner planner(*p.scene, &recording, options);
+  const PlanResult result = planner.solve(p.scene->start.data(), p.scene->goal.data());
+  EXPECT_FALSE(result.solved);
+  EXPECT_EQ(planner.paths_refused(), 0u);
+  ASSERT_EQ(recording.sizes.size(), kRounds);
+  EXPECT_EQ(result.rounds, kRounds);
+  // Each round's lanes come from the last round's rows per lane: the round's rows are
+  // about the aim, not exactly it (the first round's 64 lanes aside).
+  for (std::size_t r = 1; r < kRounds; ++r) {
+    const double aim = 4096.0 * (1 << std::min<std::size_t>(r / 8, 3));
+    EXPECT_GT(recording.sizes[r], 0.6 * aim) << "round " << r + 1;
+    EXPECT_LT(recording.sizes[r], 1.6 * aim) << "round " << r + 1;
+  }
+}
+
 // The CPU backend's checks per lane with early stops grow the same trees as one call of
 // every row: the same path for the same seed and lanes.
 TEST(TreePlanner, HostChecksWithEarlyStopsGrowTheSameTreesAsOneCall) {

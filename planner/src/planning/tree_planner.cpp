@@ -39,6 +39,10 @@ constexpr std::size_t kRowsPerRound = 4096;
 constexpr std::size_t kRoundsPerDoubling = 8, kMaxDoublings = 3;
 constexpr std::size_t kMinLanes = 8, kMaxLanes = 8192;
 
+// From this round on, each round is drawn from the trees as the round before it found
+// them (the class comment says why and when).
+constexpr std::size_t kFirstRoundDrawnAhead = kRoundsPerDoubling + 1;
+
 std::size_t rows_per_round(std::size_t rounds_done) {
   return kRowsPerRound << std::min(kMaxDoublings, rounds_done / kRoundsPerDoubling);
 }
@@ -253,6 +257,41 @@ std::size_t TreePlanner::check_on_host(const std::vector<Lane>& lanes,
   return checked;
 }
 
+void TreePlanner::check_beside_next_round(const std::vector<float>& rows,
+                                          std::vector<std::uint8_t>* colliding,
+                                          std::vector<Lane>* next_lanes,
+                                          std::vector<float>* next_rows, PlanResult* result) {
+  const std::size_t row_count = rows.size() / scene_.space.width();
+  double check_seconds = 0;
+  std::size_t check_calls = 0;
+  auto check = [&] {
+    const std::size_t calls_before = checker_->device_calls();
+    const auto started = Clock::now();
+    checker_->check(rows.data(), row_count, colliding->data());
+    check_seconds = seconds_since(started);
+    check_calls = checker_->device_calls() - calls_before;
+  };
+  // Two tasks for two threads: the calling thread (parallel_for's thread 0), whose CUDA
+  // state is warm, checks, and a helper draws. Each runner takes the task it prefers
+  // unless the other took it first; where no helper is free, the calling thread runs both
+  // in turn.
+  std::atomic<bool> check_taken{false}, draw_taken{false};
+  parallel_for(
+      2, 2,
+      [&](std::size_t, std::size_t, int thread) {
+        const bool prefers_check = thread == 0;
+        const bool taken = (prefers_check ? check_taken : draw_taken).exchange(true);
+        if (prefers_check != taken) {
+          check();
+        } else {
+          draw_round(false, next_lanes, next_rows, result);
+        }
+      },
+      1);
+  result->times.edge_checks += check_seconds;
+  result->gpu_calls.edge_checks += check_calls;
+}
+
 int TreePlanner::grow(const std::vector<Lane>& lanes, const std::vector<float>& rows,
                       const std::vector<std::uint8_t>& colliding, std::int32_t* joined_start,
                       std::int32_t* joined_goal) {
@@ -435,8 +474,9 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
   const bool certify = options_.certify_path || options_.edges == EdgeChecks::kCertified;
   const std::size_t call_cost = checker_->configurations_per_call_cost();
   paths_refused_ = 0;
-  std::vector<Lane> lanes;
-  std::vector<float> rows;
+  std::vector<Lane> lanes, next_lanes;
+  std::vector<float> rows, next_rows;
+  bool drawn_ahead = false;  // next_lanes and next_rows hold the next round
   std::vector<std::uint8_t> colliding;
   double reported = -1;
   std::vector<float> found;
@@ -449,21 +489,16 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
       result.stop_reason = why;
       break;
     }
-    draw_round(result.rounds == 0, &lanes, &rows, &result);
+    if (drawn_ahead) {
+      lanes.swap(next_lanes);
+      rows.swap(next_rows);
+      drawn_ahead = false;
+    } else {
+      draw_round(result.rounds == 0, &lanes, &rows, &result);
+    }
     ++result.rounds;
     const std::size_t row_count = rows.size() / width;
     colliding.assign(row_count, 1);
-    {
-      StageTimer timer(&result.times.edge_checks, &result.gpu_calls.edge_checks, *checker_);
-      if (call_cost > 0) {
-        if (row_count > 0) checker_->check(rows.data(), row_count, colliding.data());
-        result.samples_checked += row_count;
-      } else {
-        result.samples_checked += check_on_host(lanes, rows, &colliding);
-      }
-    }
-    ++result.edge_batches;
-    result.edges_checked += 2 * lanes.size();
     // Where a call has a fixed cost, the next round's lanes fill about rows_per_round rows.
     if (options_.tree_lanes == 0 && call_cost > 0 && row_count > 0) {
       const double rows_per_lane = static_cast<double>(row_count) / lanes.size();
@@ -472,8 +507,31 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
                                        kMinLanes, kMaxLanes) &
                ~std::size_t(1);
     }
+    // The next round drawn ahead, from the trees as this round finds them: beside the
+    // GPU's check, or before the host's.
+    const bool draw_ahead = result.rounds + 1 >= kFirstRoundDrawnAhead;
+    if (call_cost > 0) {
+      if (draw_ahead && row_count > 0) {
+        check_beside_next_round(rows, &colliding, &next_lanes, &next_rows, &result);
+        drawn_ahead = true;
+      } else {
+        StageTimer timer(&result.times.edge_checks, &result.gpu_calls.edge_checks, *checker_);
+        if (row_count > 0) checker_->check(rows.data(), row_count, colliding.data());
+      }
+      result.samples_checked += row_count;
+    } else {
+      if (draw_ahead) {
+        draw_round(false, &next_lanes, &next_rows, &result);
+        drawn_ahead = true;
+      }
+      StageTimer timer(&result.times.edge_checks, &result.gpu_calls.edge_checks, *checker_);
+      result.samples_checked += check_on_host(lanes, rows, &colliding);
+    }
+    ++result.edge_batches;
+    result.edges_checked += 2 * lanes.size();
     std::int32_t s = -1, g = -1;
     if (grow(lanes, rows, colliding, &s, &g) >= 0) {
+      drawn_ahead = false;  // a refused path's subtrees are removed from the trees it saw
       std::vector<int> edge_tree;
       std::vector<std::int32_t> edge_child;
       const std::vector<float> path = path_through(s, g, &edge_tree, &edge_child);

@@ -11,6 +11,19 @@
 // first collision. A connection that reaches its new node joins the trees: the path runs
 // from the start through both trees to the goal.
 //
+// From the ninth round on (where a problem is hard), each round is drawn from the trees
+// as the round before it found them, not as it left them: its lanes extend from and
+// connect to nodes at least a round old. So where calls go to the GPU (the checker's
+// calls have a cost), a helper thread draws the next round (its targets, nearest nodes
+// and rows) while the GPU checks this one, and a round costs the longer of the two, not
+// their sum. On the host (the CPU backends) the threads that would draw check, and the
+// next round is drawn before this one is checked: the same trees either way. Where a
+// round joins the trees, the round drawn after it is dropped (a refused path's subtrees
+// are removed from the trees it saw). The first rounds are not drawn ahead: where a round
+// adds a node or two, as on problems whose way out is narrow, the lag would halve the
+// trees' progress (measured on the PR2's shipped pr2_reach: 6, 12 and 10 rounds became
+// 20, 34 and 38 with every round drawn ahead).
+//
 // The path is then shortcut (path_shortcutting, at the fine resolution) and the shortened
 // path certified free whole (CertifiedMotions): the tree path's detours need no
 // certificate of their own. Where that fails, the tree path's edges are certified (in
@@ -107,6 +120,12 @@ class TreePlanner {
   // rows checked.
   std::size_t check_on_host(const std::vector<Lane>& lanes, const std::vector<float>& rows,
                             std::vector<std::uint8_t>* colliding);
+  // Checks the round's rows (one call) while a helper thread draws the next round into
+  // next_lanes and next_rows from the trees as they are; adds the check's time and GPU
+  // calls to the edge checks.
+  void check_beside_next_round(const std::vector<float>& rows, std::vector<std::uint8_t>* colliding,
+                               std::vector<Lane>* next_lanes, std::vector<float>* next_rows,
+                               PlanResult* result);
   // Grows the trees by the round's verdicts; returns the lane that joined them, or -1.
   int grow(const std::vector<Lane>& lanes, const std::vector<float>& rows,
            const std::vector<std::uint8_t>& colliding, std::int32_t* joined_start,

@@ -46,12 +46,18 @@ constexpr std::size_t kFirstRoundDrawnAhead = kRoundsPerDoubling + 1;
 std::size_t rows_per_round(std::size_t rounds_done) {
   return kRowsPerRound << std::min(kMaxDoublings, rounds_done / kRoundsPerDoubling);
 }
-// Nearest-node distances a round computes from which its lanes run on all threads, and
-// rows it interpolates from which its rows are written on all threads: about half a
-// millisecond of work (a nanosecond a distance, ten a row for an arm), below which
-// waking a 16-core host's threads cost as much as they saved.
-constexpr std::size_t kThreadedNodeDistances = std::size_t(1) << 19;
-constexpr std::size_t kThreadedRows = std::size_t(1) << 16;
+// A round's nearest nodes are found, and its rows written, on all threads from about
+// half a millisecond of work, below which waking a 16-core host's threads costs as much
+// as it saves. The work is estimated per configuration entry: a nanosecond a node
+// distance where the index keeps joint columns (an arm), a nanosecond an entry where it
+// goes row by row (a floating or planar base: more for the rotation's angle), and a
+// nanosecond and a half an entry a row (an arm's row about ten).
+constexpr double kThreadedWorkNs = 5e5;
+
+bool threaded_nearest(std::size_t distances, bool by_columns, int width) {
+  return distances * (by_columns ? 1.0 : width) > kThreadedWorkNs;
+}
+bool threaded_rows(std::size_t rows, int width) { return rows * 1.5 * width > kThreadedWorkNs; }
 
 }  // namespace
 
@@ -131,7 +137,10 @@ void TreePlanner::draw_round(bool first_round, std::vector<Lane>* lanes, std::ve
   // over up to 1,600 nodes: the stage took 50.8 ms on a 16-core host's threads, 23.6 ms on
   // a 2-core one's.)
   parallel_for(
-      lanes_, tree_nodes * lanes_ > kThreadedNodeDistances ? resolve_thread_count(0) : 1,
+      lanes_,
+      threaded_nearest(tree_nodes * lanes_, trees_[0].index.by_columns(), width)
+          ? resolve_thread_count(0)
+          : 1,
       [&](std::size_t begin, std::size_t end, int thread) {
         for (std::size_t i = begin; i < end; ++i) {
           Lane& lane = (*lanes)[i];
@@ -184,7 +193,7 @@ void TreePlanner::draw_round(bool first_round, std::vector<Lane>* lanes, std::ve
   }
   rows->resize(row_count * width);
   parallel_for(
-      lanes_, row_count > kThreadedRows ? resolve_thread_count(0) : 1,
+      lanes_, threaded_rows(row_count, width) ? resolve_thread_count(0) : 1,
       [&](std::size_t begin, std::size_t end, int) {
         for (std::size_t i = begin; i < end; ++i) {
           const Lane& lane = (*lanes)[i];
@@ -276,6 +285,8 @@ void TreePlanner::check_beside_next_round(const std::vector<float>& rows,
   // unless the other took it first; where no helper is free, the calling thread runs both
   // in turn.
   std::atomic<bool> check_taken{false}, draw_taken{false};
+  PlanResult drawing;  // the drawing's own stage times
+  const auto started = Clock::now();
   parallel_for(
       2, 2,
       [&](std::size_t, std::size_t, int thread) {
@@ -284,12 +295,22 @@ void TreePlanner::check_beside_next_round(const std::vector<float>& rows,
         if (prefers_check != taken) {
           check();
         } else {
-          draw_round(false, next_lanes, next_rows, result);
+          draw_round(false, next_lanes, next_rows, &drawing);
         }
       },
       1);
+  const double together = seconds_since(started);
   result->times.edge_checks += check_seconds;
   result->gpu_calls.edge_checks += check_calls;
+  // The drawing counts only for the time it took beyond the check (beside the check it
+  // costs the plan nothing), shared between its stages as they took it: the stages still
+  // add up to at most the plan's time.
+  const double drawn = drawing.times.sampling + drawing.times.knn;
+  if (drawn > 0) {
+    const double share = std::min(1.0, std::max(0.0, together - check_seconds) / drawn);
+    result->times.sampling += share * drawing.times.sampling;
+    result->times.knn += share * drawing.times.knn;
+  }
 }
 
 int TreePlanner::grow(const std::vector<Lane>& lanes, const std::vector<float>& rows,

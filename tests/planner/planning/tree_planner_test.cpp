@@ -181,7 +181,8 @@ TEST(TreePlanner, OneCallARoundWhereCallsCost) {
 
 // Where calls cost, hard problems get larger rounds: about 4,096 rows a round in the first
 // 8 rounds, then twice as many every 8 rounds, up to 32,768 (a closed wall: the trees
-// never join, and every call is a round's).
+// never join, and every call is a round's); the stage times of rounds drawn beside a
+// call add up to at most the plan's.
 TEST(TreePlanner, RoundsGrowEveryEightRoundsWhereCallsCost) {
   Problem p(testing::kCubeAndThinWallScene);
   struct Recording : testing::CostlyCallChecker {
@@ -208,6 +209,11 @@ TEST(TreePlanner, RoundsGrowEveryEightRoundsWhereCallsCost) {
     EXPECT_GT(recording.sizes[r], 0.6 * aim) << "round " << r + 1;
     EXPECT_LT(recording.sizes[r], 1.6 * aim) << "round " << r + 1;
   }
+  // From the ninth round each round is drawn beside the call before: the stages count
+  // that time once.
+  const PlanTimes& t = result.times;
+  EXPECT_GT(t.knn, 0);
+  EXPECT_LE(t.sampling + t.knn + t.edge_checks + t.shortcutting, t.total);
 }
 
 // The CPU backend's checks per lane with early stops grow the same trees as one call of

@@ -32,6 +32,8 @@ class NearestNodeIndex {
   // Adds the next node, q (shape [width]).
   void add(const float* q);
   std::size_t size() const { return size_; }
+  // Whether the nodes are kept by joint columns (a fixed base, no joint wrapping round).
+  bool by_columns() const { return by_columns_; }
 
   // The nearest node to q (shape [width]) among those for which skip(i) is false, ties
   // to the lowest index; -1 where there is none, or where stop() said to stop (asked

@@ -7,7 +7,9 @@
 
 namespace gplanner {
 
-// Seconds per stage of a plan.
+// Seconds per stage of a plan. Stages that run at once count once: where TreePlanner
+// draws a round (sampling, k-NN) while the GPU checks the one before (edge checks), the
+// drawing counts only for the time it took beyond the check.
 struct PlanTimes {
   double sampling = 0;      // drawing milestones
   double state_checks = 0;  // checking milestones (batches)

@@ -122,7 +122,8 @@ class TreePlanner {
                             std::vector<std::uint8_t>* colliding);
   // Checks the round's rows (one call) while a helper thread draws the next round into
   // next_lanes and next_rows from the trees as they are; adds the check's time and GPU
-  // calls to the edge checks.
+  // calls to the edge checks, and to sampling and k-NN the time the drawing took beyond
+  // the check.
   void check_beside_next_round(const std::vector<float>& rows, std::vector<std::uint8_t>* colliding,
                                std::vector<Lane>* next_lanes, std::vector<float>* next_rows,
                                PlanResult* result);

@@ -23,9 +23,9 @@ using Clock = std::chrono::steady_clock;
 // Constants, not the checker's measured call cost: the lanes shape the trees, and a seed
 // plans the same trees whatever a call's timing. Easy problems end within a few rounds of
 // a few thousand rows, as cheap as a call gets. Hard ones check about as many rows in all
-// whatever a round holds (cage 0005: 1.1 million rows in 271 rounds at 4,096, 1.2 million
-// in 52 growing rounds), so larger rounds cost them fewer calls and fewer rounds of host
-// work. Measured (H200, 0333b7b against this, MotionBenchMaker's first 8 problems of each
+// whatever a round holds (cage 0005: about 1.1 million rows both in 271 rounds of 4,096
+// and in 52 growing rounds), so larger rounds cost them fewer calls and fewer rounds of
+// host work. Measured (H200, 0333b7b against this, MotionBenchMaker's first 8 problems of each
 // scenario, cage 9 to 40, and the 8 slowest other problems of the 700):
 // - 4,096 rows throughout: cage's median 60.3 ms, the slow eight's 173 ms;
 // - doubling every 16 rounds up to 4 times: 45.9 and 107 ms;

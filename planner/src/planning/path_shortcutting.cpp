@@ -60,6 +60,7 @@ Proposal propose(const std::vector<float>& path, int width, int candidates, Loca
   // Samples at the coarse resolution, and at the fine one together with the coarse ones
   // that are not among them.
   std::size_t coarse_samples = 0, at_once_samples = 0;
+  std::vector<std::size_t> coarse_not_in_fine;  // shortcuts whose coarse samples fine's miss
   for (std::size_t k = 0; k < n; ++k) {
     std::copy_n(&path[p.pairs[k].first * width], width, &p.from[k * width]);
     std::copy_n(&path[p.pairs[k].second * width], width, &p.to[k * width]);
@@ -67,14 +68,14 @@ Proposal propose(const std::vector<float>& path, int width, int candidates, Loca
     p.fine_segments[k] = fine->segments(&p.from[k * width], &p.to[k * width]);
     coarse_samples += p.segments[k] - 1;
     at_once_samples += p.fine_segments[k] - 1;
-    if (p.fine_segments[k] % p.segments[k] != 0) at_once_samples += p.segments[k] - 1;
+    if (p.fine_segments[k] % p.segments[k] != 0) {
+      at_once_samples += p.segments[k] - 1;
+      coarse_not_in_fine.push_back(k);
+    }
   }
   p.fine_at_once = !certified && at_once_samples <= fine->one_batch_samples() &&
                    at_once_samples < coarse_samples + local->configurations_per_call_cost();
-  if (p.fine_at_once) {
-    for (std::size_t k = 0; k < n; ++k)
-      if (p.fine_segments[k] % p.segments[k] != 0) p.coarse_too.push_back(k);
-  }
+  if (p.fine_at_once) p.coarse_too = std::move(coarse_not_in_fine);
   return p;
 }
 

@@ -7,9 +7,15 @@
 // For each scene: the gpu backend's routing (measured when the checker is made), then
 // `gplan plan`'s planner (auto) run --repeat times with the same checker, a planner made
 // anew each time (one line each: plan time, stage times, calls, the time inside them, the
-// path's length), then the last run's calls, one line each.
+// path's length, rounds and nodes), then the last run's calls, one line each.
+//
+// --call-cost N: the planner is told that a call costs as much as N configurations, as
+// the gpu backend's measured cost tells it, so that the gpu backend's planning (its rounds
+// and trees, its host work between calls) can be traced where there is no GPU, the calls
+// answered by the backend given.
 //
 // usage: gplanner_plan_calls SCENE... [--backend gpu|cpu|fcl] [--repeat R] [--seed S]
+//                            [--call-cost N]
 
 #include <chrono>
 #include <cstdio>
@@ -41,7 +47,9 @@ struct Call {
 // The checker it wraps, every call recorded.
 class RecordingChecker : public gplanner::CollisionChecker {
  public:
-  explicit RecordingChecker(gplanner::CollisionChecker* checker) : checker_(checker) {}
+  // call_cost: what configurations_per_call_cost() says (0: the checker's own).
+  RecordingChecker(gplanner::CollisionChecker* checker, std::size_t call_cost)
+      : checker_(checker), call_cost_(call_cost) {}
   std::string backend() const override { return checker_->backend(); }
   void check(const float* q, std::size_t n, std::uint8_t* verdicts) override {
     record(n, false, [&] { checker_->check(q, n, verdicts); });
@@ -51,9 +59,11 @@ class RecordingChecker : public gplanner::CollisionChecker {
     record(n, true, [&] { checker_->check_clearances(q, n, clearances, verdicts); });
   }
   std::size_t configurations_per_call_cost() const override {
-    return checker_->configurations_per_call_cost();
+    return call_cost_ > 0 ? call_cost_ : checker_->configurations_per_call_cost();
   }
-  std::size_t cheap_calls_up_to() const override { return checker_->cheap_calls_up_to(); }
+  std::size_t cheap_calls_up_to() const override {
+    return call_cost_ > 0 ? 0 : checker_->cheap_calls_up_to();
+  }
   gplanner::CollisionChecker* host_checker() override { return checker_->host_checker(); }
   std::size_t device_calls() const override { return checker_->device_calls(); }
   int gpu_device() const override { return checker_->gpu_device(); }
@@ -78,6 +88,7 @@ class RecordingChecker : public gplanner::CollisionChecker {
   }
 
   gplanner::CollisionChecker* checker_;
+  std::size_t call_cost_;
   Clock::time_point started_;
   std::mutex mutex_;
 };
@@ -89,6 +100,7 @@ int main(int argc, char** argv) {
   std::string backend = "gpu";
   int repeat = 3;
   unsigned long long seed = 0;
+  std::size_t call_cost = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg.rfind("--", 0) != 0) {
@@ -106,6 +118,8 @@ int main(int argc, char** argv) {
       repeat = std::max(1, std::atoi(value.c_str()));
     } else if (arg == "--seed") {
       seed = std::strtoull(value.c_str(), nullptr, 10);
+    } else if (arg == "--call-cost") {
+      call_cost = std::strtoull(value.c_str(), nullptr, 10);
     } else {
       std::cerr << "unknown option " << arg << "\n";
       return 2;
@@ -113,7 +127,7 @@ int main(int argc, char** argv) {
   }
   if (files.empty()) {
     std::cerr << "usage: gplanner_plan_calls SCENE... [--backend gpu|cpu|fcl] [--repeat R] "
-                 "[--seed S]\n";
+                 "[--seed S] [--call-cost N]\n";
     return 2;
   }
   for (const std::string& file : files) {
@@ -130,7 +144,7 @@ int main(int argc, char** argv) {
           file.c_str(), r.calling_thread_up_to, r.host_threads_up_to, r.call_cost,
           r.host_seconds_per_configuration * 1e6);
     }
-    RecordingChecker recording(checker.get());
+    RecordingChecker recording(checker.get(), call_cost);
     gplanner::PlanOptions options = gplanner::plan_options(scene);
     if (seed > 0) options.seed = seed;
     const std::unique_ptr<gplanner::NeighborFinder> neighbors = gplanner::make_neighbor_finder(
@@ -146,10 +160,10 @@ int main(int argc, char** argv) {
       for (const Call& c : recording.calls) in_calls += c.ms;
       std::printf(
           "%s: run %d: solved %d, plan %.3f ms (k-NN %.3f, edge checks %.3f, "
-          "shortcutting %.3f), %zu calls taking %.3f ms, length %.4f",
+          "shortcutting %.3f), %zu rounds, %zu nodes, %zu calls taking %.3f ms, length %.4f",
           file.c_str(), r, result.solved ? 1 : 0, result.times.total * 1e3, result.times.knn * 1e3,
-          result.times.edge_checks * 1e3, result.times.shortcutting * 1e3, recording.calls.size(),
-          in_calls, result.length);
+          result.times.edge_checks * 1e3, result.times.shortcutting * 1e3, result.rounds,
+          result.milestones, recording.calls.size(), in_calls, result.length);
       if (const auto* gpu = dynamic_cast<const gplanner::GpuChecker*>(checker.get()))
         std::printf(", host cost ratio %.2f, host calls up to %zu", gpu->host_cost_ratio(),
                     gpu->host_calls_up_to());

@@ -40,8 +40,10 @@ constexpr std::size_t kRoundsPerDoubling = 8, kMaxDoublings = 3;
 constexpr std::size_t kMinLanes = 8, kMaxLanes = 8192;
 
 // From this round on, each round is drawn from the trees as the round before it found
-// them (the class comment says why and when).
+// them, where the round before grew the trees by a node for every kLanesPerNodeDrawnAhead
+// of its lanes or more (the class comment says why and when).
 constexpr std::size_t kFirstRoundDrawnAhead = kRoundsPerDoubling + 1;
+constexpr std::size_t kLanesPerNodeDrawnAhead = 6;
 
 std::size_t rows_per_round(std::size_t rounds_done) {
   return kRowsPerRound << std::min(kMaxDoublings, rounds_done / kRoundsPerDoubling);
@@ -495,9 +497,11 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
   const bool certify = options_.certify_path || options_.edges == EdgeChecks::kCertified;
   const std::size_t call_cost = checker_->configurations_per_call_cost();
   paths_refused_ = 0;
+  rounds_drawn_ahead_ = 0;
   std::vector<Lane> lanes, next_lanes;
   std::vector<float> rows, next_rows;
   bool drawn_ahead = false;  // next_lanes and next_rows hold the next round
+  std::size_t grown_nodes = 0, grown_lanes = 0;  // what the last round grew, from how many lanes
   std::vector<std::uint8_t> colliding;
   double reported = -1;
   std::vector<float> found;
@@ -514,6 +518,7 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
       lanes.swap(next_lanes);
       rows.swap(next_rows);
       drawn_ahead = false;
+      ++rounds_drawn_ahead_;
     } else {
       draw_round(result.rounds == 0, &lanes, &rows, &result);
     }
@@ -530,7 +535,8 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
     }
     // The next round drawn ahead, from the trees as this round finds them: beside the
     // GPU's check, or before the host's.
-    const bool draw_ahead = result.rounds + 1 >= kFirstRoundDrawnAhead;
+    const bool draw_ahead = result.rounds + 1 >= kFirstRoundDrawnAhead &&
+                            grown_nodes * kLanesPerNodeDrawnAhead >= grown_lanes;
     if (call_cost > 0) {
       if (draw_ahead && row_count > 0) {
         check_beside_next_round(rows, &colliding, &next_lanes, &next_rows, &result);
@@ -551,7 +557,11 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
     ++result.edge_batches;
     result.edges_checked += 2 * lanes.size();
     std::int32_t s = -1, g = -1;
-    if (grow(lanes, rows, colliding, &s, &g) >= 0) {
+    const std::size_t nodes_before = trees_[0].size() + trees_[1].size();
+    const bool joined = grow(lanes, rows, colliding, &s, &g) >= 0;
+    grown_nodes = trees_[0].size() + trees_[1].size() - nodes_before;
+    grown_lanes = lanes.size();
+    if (joined) {
       drawn_ahead = false;  // a refused path's subtrees are removed from the trees it saw
       std::vector<int> edge_tree;
       std::vector<std::int32_t> edge_child;

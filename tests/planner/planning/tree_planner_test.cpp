@@ -209,29 +209,82 @@ TEST(TreePlanner, RoundsGrowEveryEightRoundsWhereCallsCost) {
     EXPECT_GT(recording.sizes[r], 0.6 * aim) << "round " << r + 1;
     EXPECT_LT(recording.sizes[r], 1.6 * aim) << "round " << r + 1;
   }
-  // From the ninth round each round is drawn beside the call before: the stages count
-  // that time once.
+  // From the ninth round each round is drawn beside the call before (the trees grow
+  // freely on either side of the wall): the stages count that time once.
+  EXPECT_GT(planner.rounds_drawn_ahead(), 0u);
   const PlanTimes& t = result.times;
   EXPECT_GT(t.knn, 0);
   EXPECT_LE(t.sampling + t.knn + t.edge_checks + t.shortcutting, t.total);
 }
 
+// Where the trees can hardly grow (the start and the goal each shut in a box a little
+// larger than the cube: nearly every extension hits a side), a round adds fewer nodes
+// than one for every six lanes, and no round is drawn ahead: the lag would cost such trees
+// half their progress.
+TEST(TreePlanner, RoundsAfterOnesThatAddFewNodesAreNotDrawnAhead) {
+  // Six plates 2 cm thick about a centre, leaving 0.15 each way inside.
+  const auto box_about = [](const char* name, double x) {
+    std::string text;
+    const double c = 0.16, size = 0.34;
+    const double centres[6][3] = {{x - c, 0, 0}, {x + c, 0, 0}, {x, -c, 0},
+                                  {x, c, 0},     {x, 0, -c},    {x, 0, c}};
+    for (int i = 0; i < 6; ++i) {
+      const double sx = i / 2 == 0 ? 0.02 : size, sy = i / 2 == 1 ? 0.02 : size,
+                   sz = i / 2 == 2 ? 0.02 : size;
+      text += "  - {name: " + std::string(name) + std::to_string(i) + ", box: [" +
+              std::to_string(sx) + ", " + std::to_string(sy) + ", " + std::to_string(sz) +
+              "], pose: {xyz: [" + std::to_string(centres[i][0]) + ", " +
+              std::to_string(centres[i][1]) + ", " + std::to_string(centres[i][2]) + "]}}\n";
+    }
+    return text;
+  };
+  const std::string scene = std::string(R"(name: boxed_in
+robot:
+  mesh: cube.obj
+obstacles:
+)") + box_about("start", -1) +
+                            box_about("goal", 1) + R"(bounds:
+  min: [-2, -1.5, -1]
+  max: [2, 1.5, 1]
+start:
+  base: {xyz: [-1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
+goal:
+  base: {xyz: [1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
+)";
+  Problem p(scene.c_str());
+  testing::CostlyCallChecker costly(*p.scene, 8192);
+  constexpr std::size_t kRounds = 20;
+  PlanOptions options = p.options(1);
+  options.should_stop = [&] { return costly.device_calls() >= kRounds; };
+  TreePlanner planner(*p.scene, &costly, options);
+  const PlanResult result = planner.solve(p.scene->start.data(), p.scene->goal.data());
+  EXPECT_FALSE(result.solved);
+  EXPECT_EQ(costly.device_calls(), kRounds);
+  EXPECT_EQ(result.rounds, kRounds);
+  // The trees grew by fewer nodes than a sixth of one round's lanes in all.
+  EXPECT_LT(6 * (result.milestones - 2), planner.lanes());
+  EXPECT_EQ(planner.rounds_drawn_ahead(), 0u);
+}
+
 // The CPU backend's checks per lane with early stops grow the same trees as one call of
-// every row: the same path for the same seed and lanes.
+// every row: the same path for the same seed and lanes, with the same rounds drawn ahead
+// (beside the call, or before the host's checks).
 TEST(TreePlanner, HostChecksWithEarlyStopsGrowTheSameTreesAsOneCall) {
   Problem p(kWallWithAHole);
   PlanOptions options = p.options(5);
   options.tree_lanes = 8;
   options.shortcut_rounds = 0;
-  const PlanResult on_host = p.plan(options);
+  TreePlanner on_host(*p.scene, p.checker.get(), options);
+  const PlanResult host = on_host.solve(p.scene->start.data(), p.scene->goal.data());
   testing::CostlyCallChecker costly(*p.scene, 8192);
   TreePlanner one_call(*p.scene, &costly, options);
   const PlanResult in_calls = one_call.solve(p.scene->start.data(), p.scene->goal.data());
-  ASSERT_TRUE(on_host.solved && in_calls.solved);
-  EXPECT_EQ(on_host.path, in_calls.path);
-  EXPECT_EQ(on_host.rounds, in_calls.rounds);
-  EXPECT_EQ(on_host.milestones, in_calls.milestones);
-  EXPECT_GT(on_host.rounds, 9u);  // rounds drawn ahead too (beside the call, or before it)
+  ASSERT_TRUE(host.solved && in_calls.solved);
+  EXPECT_EQ(host.path, in_calls.path);
+  EXPECT_EQ(host.rounds, in_calls.rounds);
+  EXPECT_EQ(host.milestones, in_calls.milestones);
+  EXPECT_GT(on_host.rounds_drawn_ahead(), 0u);
+  EXPECT_EQ(on_host.rounds_drawn_ahead(), one_call.rounds_drawn_ahead());
 }
 
 TEST(PlannerChoice, NamesAndParsing) {

@@ -43,7 +43,7 @@ struct Scene;
 
 struct CertifiedMotionOptions {
   // Metres: along the first segments of a motion no link moves farther than this. <= 0:
-  // 2 % of the robot's size (ToleranceBand::robot_size), or 1 % of the longest motion
+  // 1 % of the robot's size (ToleranceBand::robot_size), or 1 % of the longest motion
   // the space allows (MotionBound::longest_displacement) where that is less.
   double step = 0;
   // Metres: a segment not certified when its bound is below this makes its motion

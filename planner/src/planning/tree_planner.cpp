@@ -69,6 +69,8 @@ TreePlanner::TreePlanner(const Scene& scene, CollisionChecker* checker, const Pl
       options_(options),
       local_(scene, checker, sliced(options.local, options)),
       certifier_(scene, checker, sliced(options.certified, options)),
+      fine_(scene, checker,
+            refined(sliced(options.local, options), options.final_check_refinement)),
       sampler_(scene.space, local_.metric(), options.sampler),
       rng_(options.seed),
       trees_{Tree(local_.metric()), Tree(local_.metric())} {
@@ -384,8 +386,8 @@ void TreePlanner::remove_subtree(Tree* tree, std::int32_t node) const {
 TreePlanner::PathOutcome TreePlanner::finish_path(const std::vector<float>& path,
                                                   const std::vector<int>& edge_tree,
                                                   const std::vector<std::int32_t>& edge_child,
-                                                  LocalPlanner* fine, bool certify,
-                                                  PlanResult* result, std::vector<float>* found,
+                                                  bool certify, PlanResult* result,
+                                                  std::vector<float>* found,
                                                   std::optional<ShortcutRounds>* failed_shortcut) {
   failed_shortcut->reset();
   const int width = scene_.space.width();
@@ -426,7 +428,7 @@ TreePlanner::PathOutcome TreePlanner::finish_path(const std::vector<float>& path
     {
       StageTimer timer(&result->times.shortcutting, &result->gpu_calls.shortcutting, *checker_);
       std::mt19937_64 shortcut_rng = shortcut_generator(options_.seed);
-      rounds = run_shortcut_rounds(scene_.space, &local_, fine, options_.shortcut_rounds,
+      rounds = run_shortcut_rounds(scene_.space, &local_, &fine_, options_.shortcut_rounds,
                                    options_.shortcut_candidates, &shortcut_rng, path);
     }
     const std::vector<float>& shortcut = rounds.shortened;
@@ -465,7 +467,7 @@ TreePlanner::PathOutcome TreePlanner::finish_path(const std::vector<float>& path
   invalid.assign(unchecked.size(), 1);
   {
     StageTimer timer(&result->times.edge_checks, &result->gpu_calls.edge_checks, *checker_);
-    MotionChecker* motions = certify ? static_cast<MotionChecker*>(&certifier_) : fine;
+    MotionChecker* motions = certify ? static_cast<MotionChecker*>(&certifier_) : &fine_;
     if (!motions->check_motions(from.data(), to.data(), unchecked.size(), invalid.data()))
       return PathOutcome::kStopped;
   }
@@ -483,17 +485,16 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
   const std::size_t calls_before = checker_->device_calls();
   local_.reset_stats();
   certifier_.reset_stats();
+  fine_.reset_stats();
   const int width = scene_.space.width();
   stop_ = [this] { return why_stop() != nullptr; };
   local_.set_stop(stop_);
   certifier_.set_stop(stop_);
+  fine_.set_stop(stop_);
   sampler_.set_endpoints(start, goal);
   for (Tree& tree : trees_) tree.clear();
   add_node(&trees_[0], start, -1);
   add_node(&trees_[1], goal, -1);
-  LocalPlanner fine(scene_, checker_,
-                    refined(sliced(options_.local, options_), options_.final_check_refinement));
-  fine.set_stop(stop_);
   const bool certify = options_.certify_path || options_.edges == EdgeChecks::kCertified;
   const std::size_t call_cost = checker_->configurations_per_call_cost();
   paths_refused_ = 0;
@@ -566,8 +567,8 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
       std::vector<int> edge_tree;
       std::vector<std::int32_t> edge_child;
       const std::vector<float> path = path_through(s, g, &edge_tree, &edge_child);
-      const PathOutcome outcome = finish_path(path, edge_tree, edge_child, &fine, certify, &result,
-                                              &found, &failed_shortcut);
+      const PathOutcome outcome =
+          finish_path(path, edge_tree, edge_child, certify, &result, &found, &failed_shortcut);
       if (outcome == PathOutcome::kRefused) ++paths_refused_;
       if (outcome == PathOutcome::kShortened || outcome == PathOutcome::kFound) {
         result.length_before_shortcut = path_length(local_.metric(), path, width);
@@ -592,10 +593,10 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
       std::mt19937_64 shortcut_rng = shortcut_generator(options_.seed);
       result.length =
           failed_shortcut
-              ? certify_shortcut_rounds(scene_.space, &local_, &fine, &certifier_,
+              ? certify_shortcut_rounds(scene_.space, &local_, &fine_, &certifier_,
                                         options_.shortcut_rounds, options_.shortcut_candidates,
                                         *failed_shortcut, true, &shortcut_rng, &result.path)
-              : shortcut_path(scene_.space, &local_, &fine, certify ? &certifier_ : nullptr,
+              : shortcut_path(scene_.space, &local_, &fine_, certify ? &certifier_ : nullptr,
                               options_.shortcut_rounds, options_.shortcut_candidates, &shortcut_rng,
                               &result.path);
       if (options_.progress) {
@@ -605,7 +606,8 @@ PlanResult TreePlanner::solve(const float* start, const float* goal) {
     }
   }
   result.samples_checked += local_.stats().samples + certifier_.stats().checks;
-  result.edge_batches += local_.stats().batches + fine.stats().batches + certifier_.stats().batches;
+  result.edge_batches +=
+      local_.stats().batches + fine_.stats().batches + certifier_.stats().batches;
   result.times.total = elapsed();
   result.gpu_calls.total = checker_->device_calls() - calls_before;
   return result;

@@ -156,8 +156,8 @@ class TreePlanner {
   // pass, *failed_shortcut holds the rounds, for the path's shortcutting to go on from);
   // otherwise the path's edges not yet certified.
   PathOutcome finish_path(const std::vector<float>& path, const std::vector<int>& edge_tree,
-                          const std::vector<std::int32_t>& edge_child, LocalPlanner* fine,
-                          bool certify, PlanResult* result, std::vector<float>* found,
+                          const std::vector<std::int32_t>& edge_child, bool certify,
+                          PlanResult* result, std::vector<float>* found,
                           std::optional<ShortcutRounds>* failed_shortcut);
   const char* why_stop() const;
   double elapsed() const;
@@ -167,6 +167,10 @@ class TreePlanner {
   PlanOptions options_;
   LocalPlanner local_;
   CertifiedMotions certifier_;
+  // The path's re-check and the shortcuts' check, at the resolution refined by
+  // PlanOptions::final_check_refinement: made once (its motion bound goes over every
+  // vertex of the robot's meshes, a tenth of a millisecond of an easy plan's few).
+  LocalPlanner fine_;
   MilestoneSampler sampler_;
   double range_ = 0;
   std::size_t lanes_ = 0;

@@ -116,18 +116,32 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
     // the segment (a configuration inside lies within half a segment of an end).
     ends.clear();
     clearances.clear();
+    ends.reserve(4 * open.size() * width);  // room for the plain checks' copy too
+    clearances.reserve(4 * open.size() * links);
     std::vector<std::size_t> end_index(open.size() * 2, SIZE_MAX);
+    // Each link's clearance (a float) for the segments of one motion, of one length: made
+    // again where a segment is longer than the row's own (t1 - t0 differs in its last
+    // bits between segments of one length) or more than a billionth shorter, so that no
+    // end asks less than its segment needs.
+    std::vector<float> row(links);
+    std::size_t row_motion = SIZE_MAX;
+    double row_fraction = -1;
     for (std::size_t i = 0; i < open.size(); ++i) {
       const Segment& s = open[i];
       const double fraction = s.t1 - s.t0;
-      const double* bounds = &motion_bounds[s.motion * links];
+      if (s.motion != row_motion || fraction > row_fraction ||
+          fraction < row_fraction * (1 - 1e-9)) {
+        const double* bounds = &motion_bounds[s.motion * links];
+        for (std::size_t l = 0; l < links; ++l) row[l] = float_at_least(0.5 * bounds[l] * fraction);
+        row_motion = s.motion;
+        row_fraction = fraction;
+      }
       const auto add_end = [&](double t) {
         const std::size_t e = ends.size() / width;
         ends.resize(ends.size() + width);
         scene_.space.interpolate(from + s.motion * width, to + s.motion * width, t,
                                  &ends[e * width]);
-        for (std::size_t l = 0; l < links; ++l)
-          clearances.push_back(float_at_least(0.5 * bounds[l] * fraction));
+        clearances.insert(clearances.end(), row.begin(), row.end());
         return e;
       };
       const bool shares = i > 0 && open[i - 1].motion == s.motion && open[i - 1].t1 == s.t0;
@@ -140,7 +154,8 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
     // One call where the plain checks add fewer rows than a call costs.
     const bool one_call = call_cost > 0 && n_ends <= call_cost;
     if (one_call) {  // the same ends again, with no clearance
-      ends.insert(ends.end(), ends.begin(), ends.end());
+      ends.resize(2 * ends.size());  // (insert() may not copy a vector's own elements)
+      std::copy_n(ends.begin(), ends.size() / 2, ends.begin() + ends.size() / 2);
       clearances.resize(2 * clearances.size(), 0.0f);
     }
     const std::size_t rows = ends.size() / width;

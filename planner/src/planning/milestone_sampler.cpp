@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "gplanner/common/parallel_for.h"
 #include "gplanner/planner/planning/plan_result.h"
 #include "gplanner/planner/scene/planner_settings.h"
 #include "stage_timer.h"
@@ -97,23 +98,71 @@ void MilestoneSampler::perturb(std::mt19937_64* rng, const float* q1, float* q2)
   }
 }
 
+bool MilestoneSampler::attempt(std::mt19937_64* rng, std::vector<float>* q) const {
+  const int width = space_.width();
+  std::bernoulli_distribution is_bridge(options_.bridge_fraction);
+  const bool bridge = options_.bridge_fraction > 0 && is_bridge(*rng);
+  const std::size_t first = q->size();
+  q->resize(first + (bridge ? 2 : 1) * width);
+  draw(rng, &(*q)[first]);
+  if (bridge) perturb(rng, &(*q)[first], &(*q)[first + width]);
+  return bridge;
+}
+
 std::size_t MilestoneSampler::sample(std::mt19937_64* rng, std::size_t attempts,
                                      CollisionChecker* checker, std::vector<float>* found,
                                      PlanTimes* times) {
   const int width = space_.width();
+  Clock::time_point started = Clock::now();
+  // The attempts by stream: the one under way, then new ones, each seeded in turn.
+  struct Part {
+    std::mt19937_64 rng;
+    std::size_t attempts;
+    std::vector<float> q;
+    std::vector<bool> bridge;
+  };
+  std::vector<Part> parts;
+  for (std::size_t left = attempts; left > 0;) {
+    if (stream_left_ == 0) {
+      stream_.seed((*rng)());
+      stream_left_ = kStreamAttempts;
+    }
+    const std::size_t n = std::min(left, stream_left_);
+    parts.push_back({stream_, n, {}, {}});
+    stream_left_ -= n;
+    left -= n;
+  }
+  // A part costs about a quarter of a millisecond (a rigid body's 1,024 attempts): the
+  // host's threads from two parts on.
+  parallel_for(
+      parts.size(), parts.size() > 1 ? resolve_thread_count(0) : 1,
+      [&](std::size_t begin, std::size_t end, int) {
+        for (std::size_t p = begin; p < end; ++p) {
+          Part& part = parts[p];
+          part.q.reserve(part.attempts * width * (options_.bridge_fraction > 0 ? 2 : 1));
+          part.bridge.resize(part.attempts);
+          for (std::size_t a = 0; a < part.attempts; ++a)
+            part.bridge[a] = attempt(&part.rng, &part.q);
+        }
+      },
+      1);
+  if (stream_left_ > 0) stream_ = parts.back().rng;  // the stream as its last part left it
   // Candidates: one per plain attempt, two per bridge (its ends, q1 then q2).
   std::vector<float> q;
   std::vector<std::size_t> first(attempts);  // per attempt: its first candidate row
   std::vector<bool> bridge(attempts);
-  Clock::time_point started = Clock::now();
-  std::bernoulli_distribution is_bridge(options_.bridge_fraction);
-  for (std::size_t i = 0; i < attempts; ++i) {
-    bridge[i] = options_.bridge_fraction > 0 && is_bridge(*rng);
-    first[i] = q.size() / width;
-    q.resize(q.size() + (bridge[i] ? 2 : 1) * width);
-    float* row = &q[first[i] * width];
-    draw(rng, row);
-    if (bridge[i]) perturb(rng, row, row + width);
+  std::size_t total = 0;
+  for (const Part& part : parts) total += part.q.size();
+  q.reserve(total);
+  std::size_t i = 0;
+  for (const Part& part : parts) {
+    std::size_t row = q.size() / width;
+    for (std::size_t a = 0; a < part.attempts; ++a, ++i) {
+      bridge[i] = part.bridge[a];
+      first[i] = row;
+      row += bridge[i] ? 2 : 1;
+    }
+    q.insert(q.end(), part.q.begin(), part.q.end());
   }
   times->sampling += seconds_since(started);
   const std::size_t candidates = q.size() / width;

@@ -52,6 +52,12 @@ class MilestoneSampler {
   // [width]).
   void set_endpoints(const float* start, const float* goal);
 
+  // Attempts are drawn in streams of kStreamAttempts, each from a generator of its own
+  // seeded by one draw of `rng` when the stream begins, so that many streams are drawn at
+  // once on the host's threads. The milestones depend on the seed and the order of the
+  // attempts alone: neither on how the attempts are split into calls, nor on the threads.
+  static constexpr std::size_t kStreamAttempts = 1024;
+
   // Makes `attempts` attempts (a candidate, or a bridge), checks them and appends the
   // free milestones found to *found (shape [*, width]) in the order of the attempts.
   // Returns the number of configurations checked; adds the time taken to
@@ -66,11 +72,16 @@ class MilestoneSampler {
 
  private:
   void perturb(std::mt19937_64* rng, const float* q1, float* q2) const;
+  // One attempt's candidates (one, or a bridge's two) appended to *q; whether a bridge.
+  bool attempt(std::mt19937_64* rng, std::vector<float>* q) const;
 
   const ConfigurationSpace& space_;
   ConfigurationMetric metric_;
   SamplerOptions options_;
   std::vector<float> start_, goal_;
+  // The stream under way: its generator, and the attempts it has left.
+  std::mt19937_64 stream_;
+  std::size_t stream_left_ = 0;
 };
 
 }  // namespace gplanner

@@ -132,8 +132,8 @@ std::size_t MilestoneSampler::sample(std::mt19937_64* rng, std::size_t attempts,
     stream_left_ -= n;
     left -= n;
   }
-  // A part costs about a quarter of a millisecond (a rigid body's 1,024 attempts): the
-  // host's threads from two parts on.
+  // A part costs a quarter to half a millisecond (a rigid body's 1,024 attempts), waking
+  // the host's threads tens of microseconds: the threads from two parts on.
   parallel_for(
       parts.size(), parts.size() > 1 ? resolve_thread_count(0) : 1,
       [&](std::size_t begin, std::size_t end, int) {

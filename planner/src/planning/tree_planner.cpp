@@ -40,8 +40,9 @@ constexpr std::size_t kRoundsPerDoubling = 8, kMaxDoublings = 3;
 constexpr std::size_t kMinLanes = 8, kMaxLanes = 8192;
 
 // From this round on, each round is drawn from the trees as the round before it found
-// them, where the round before grew the trees by a node for every kLanesPerNodeDrawnAhead
-// of its lanes or more (the class comment says why and when).
+// them, where the last round grown when it is drawn (the one before that) added a node
+// for every kLanesPerNodeDrawnAhead of its lanes or more (the class comment says why and
+// when).
 constexpr std::size_t kFirstRoundDrawnAhead = kRoundsPerDoubling + 1;
 constexpr std::size_t kLanesPerNodeDrawnAhead = 6;
 

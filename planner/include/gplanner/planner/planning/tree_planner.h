@@ -12,21 +12,22 @@
 // from the start through both trees to the goal.
 //
 // From the ninth round on (where a problem is hard), each round is drawn from the trees
-// as the round before it found them, not as it left them, where the round before that
-// grew the trees by a node for every six lanes or more: its lanes extend from and
-// connect to nodes at least a round old. So where calls go to the GPU (the checker's
-// calls have a cost), a helper thread draws the next round (its targets, nearest nodes
-// and rows) while the GPU checks this one, and a round costs the longer of the two, not
-// their sum. On the host (the CPU backends) the threads that would draw check, and the
-// next round is drawn before this one is checked: the same trees either way. Where a
-// round joins the trees, the round drawn after it is dropped (a refused path's subtrees
-// are removed from the trees it saw). The first rounds are not drawn ahead, nor rounds
-// after one that added few nodes for its lanes: where a round adds a node or two, as on
-// problems whose way out is narrow, the lag would halve the trees' progress (measured on
-// the PR2's shipped pr2_reach: 6, 12 and 10 rounds became 20, 34 and 38 with every round
-// drawn ahead; from the ninth round, seed 3's 10 became 23). There a round grows the
-// trees by a node for every 10 to 20 lanes; on MotionBenchMaker's hard problems (cage,
-// bookshelves) by one for every 2 to 4, on the humanoid by one for every 4 to 6.
+// as the round before it found them, not as it left them, where the last round grown
+// when it is drawn (the one before that) added a node for every six lanes or more: its
+// lanes extend from and connect to nodes at least a round old. So where calls go to the
+// GPU (the checker's calls have a cost), a helper thread draws the next round (its
+// targets, nearest nodes and rows) while the GPU checks this one, and a round costs the
+// longer of the two, not their sum. On the host (the CPU backends) the threads that
+// would draw check, and the next round is drawn before this one is checked: the same
+// trees either way. Where a round joins the trees, the round drawn after it is dropped (a
+// refused path's subtrees are removed from the trees it saw). The first rounds are not
+// drawn ahead, nor where the last round grown added few nodes for its lanes: where a
+// round adds a node or two, as on problems whose way out is narrow, the lag would halve
+// the trees' progress (measured on the PR2's shipped pr2_reach: 6, 12 and 10 rounds
+// became 20, 34 and 38 with every round drawn ahead; from the ninth round, seed 3's 10
+// became 23). There a round grows the trees by a node for every 10 to 20 lanes; on
+// MotionBenchMaker's hard problems (cage, bookshelves) by one for every 2 to 4, on the
+// humanoid by one for every 4 to 6.
 //
 // The path is then shortcut (path_shortcutting, at the fine resolution) and the shortened
 // path certified free whole (CertifiedMotions): the tree path's detours need no

@@ -52,6 +52,8 @@ RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
                       std::max<std::size_t>(128, checker->configurations_per_call_cost()), 64,
                       std::size_t(1) << 22),
       knn_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 40) {
+  fine_.emplace(scene, checker,
+                refined(sliced(options.local, options), options.final_check_refinement));
   neighbors_->reset();
 }
 
@@ -279,6 +281,8 @@ void RoadmapPlanner::set_options(const PlanOptions& options) {
   const bool certified = certifies_path();
   options_ = options;
   if (certifies_path() != certified) certified_.clear();
+  fine_.emplace(scene_, checker_,
+                refined(sliced(options.local, options), options.final_check_refinement));
 }
 
 bool RoadmapPlanner::certifies_path() const {
@@ -337,8 +341,8 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
   sampler_.set_endpoints(start, goal);
   const std::uint32_t s = roadmap_.add_vertex(start);
   const std::uint32_t g = roadmap_.add_vertex(goal);
-  LocalPlanner fine(scene_, checker_,
-                    refined(sliced(options_.local, options_), options_.final_check_refinement));
+  LocalPlanner& fine = *fine_;
+  fine.reset_stats();
   fine.set_stop(stop_);
   const bool lazy = strategy_ == RoadmapStrategy::kLazyPrm;
   GraphPath found;

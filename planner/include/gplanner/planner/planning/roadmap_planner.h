@@ -13,6 +13,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <unordered_set>
@@ -103,6 +104,10 @@ class RoadmapPlanner {
   PlanOptions options_;
   LocalPlanner local_;
   CertifiedMotions certifier_;
+  // The path's re-check and the shortcuts' check, at the resolution refined by
+  // PlanOptions::final_check_refinement: made with the planner and again by set_options()
+  // (its motion bound goes over every vertex of the robot's meshes), not per solve.
+  std::optional<LocalPlanner> fine_;
   MilestoneSampler sampler_;
   Roadmap roadmap_;
   std::mt19937_64 rng_;

@@ -69,6 +69,21 @@ inline constexpr const char* kCubeObj =
     "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
     "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
 
+// A scene named `name` of the cube above (cube.obj, beside the scene) as a rigid robot
+// among `obstacles` (YAML list entries, a line "  - ..." each), from start x = -1 to goal
+// x = 1 within the bounds of kCubeAndThinWallScene below.
+inline std::string cube_scene(const std::string& name, const std::string& obstacles) {
+  return "name: " + name + "\nrobot:\n  mesh: cube.obj\nobstacles:\n" + obstacles +
+         R"(bounds:
+  min: [-2, -1.5, -1]
+  max: [2, 1.5, 1]
+start:
+  base: {xyz: [-1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
+goal:
+  base: {xyz: [1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
+)";
+}
+
 // A scene of the cube above (cube.obj, beside the scene) as a rigid robot, and a wall 2 cm
 // thick across x = 0, from start x = -1 to goal x = 1.
 inline constexpr const char* kCubeAndThinWallScene = R"(name: thin_wall

@@ -21,25 +21,14 @@ namespace {
 
 // The cube of side 0.2 between two walls 0.1 thick across x = -0.25 and x = 0.25: a gap
 // 0.4 wide between them.
-constexpr const char* kTwoWalls = R"(name: two_walls
-robot:
-  mesh: cube.obj
-obstacles:
-  - {name: left, box: [0.1, 10, 10], pose: {xyz: [-0.25, 0, 0]}}
-  - {name: right, box: [0.1, 10, 10], pose: {xyz: [0.25, 0, 0]}}
-bounds:
-  min: [-2, -1.5, -1]
-  max: [2, 1.5, 1]
-start:
-  base: {xyz: [-1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-goal:
-  base: {xyz: [1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-)";
-
 struct Sampling {
   Sampling() {
     folder.write("cube.obj", testing::kCubeObj);
-    scene = std::make_unique<Scene>(load_scene(folder.write("scene.yaml", kTwoWalls)));
+    const std::string two_walls =
+        testing::cube_scene("two_walls",
+                            "  - {name: left, box: [0.1, 10, 10], pose: {xyz: [-0.25, 0, 0]}}\n"
+                            "  - {name: right, box: [0.1, 10, 10], pose: {xyz: [0.25, 0, 0]}}\n");
+    scene = std::make_unique<Scene>(load_scene(folder.write("scene.yaml", two_walls)));
     checker = std::make_unique<CpuChecker>(*scene);
   }
   // The milestones of `attempts` attempts made in calls of the sizes given, in turn.

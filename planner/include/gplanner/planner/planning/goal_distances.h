@@ -6,10 +6,20 @@
 // shortest path (a lower bound that only grows stale leads it around more and more of
 // the roadmap: on the humanoid, seed 2, the searches expanded 9x more vertices, and the
 // search was most of the plan's time).
+//
+// compute() reads the roadmap's edges into rows by vertex (each edge's other end, index
+// and length, in the order of the edges' indices) and their usability; remove_edges()
+// and further compute() calls on the same roadmap, with as many vertices and edges,
+// reuse the rows (copies of a GoalDistances share them). So the edges' ends and lengths
+// must not change between these calls, and the costs follow the states that the edges
+// had at compute() and the edges given to remove_edges() since: another edge that turns
+// unusable is still counted usable (the costs stay a lower bound), and an edge that
+// turns usable (unknown to valid, with valid_edges_only) is not (call compute() again).
 
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -44,6 +54,11 @@ class GoalDistances {
   bool stopped() const { return stopped_; }
 
  private:
+  struct Rows;  // the roadmap's edges by vertex; read once by compute()
+  void read_rows(const Roadmap& roadmap);
+
+  std::shared_ptr<const Rows> rows_;
+  std::vector<std::uint8_t> usable_;  // per edge: at compute(), less those removed since
   bool valid_edges_only_ = false;
   std::uint32_t goal_ = 0;
   std::function<bool()> should_stop_;

@@ -46,6 +46,11 @@ class Roadmap {
   // not added.
   long long add_edge(std::uint32_t a, std::uint32_t b, float length,
                      EdgeState state = EdgeState::kUnknown);
+  // Adds the edge a-b, which the caller knows the roadmap does not have (and a != b),
+  // without add_edge's search for it (a scan of one end's edges); returns its index.
+  // (Since 0.5.3: lazy PRM's new milestones, whose k nearest say which edges exist.)
+  std::uint32_t append_edge(std::uint32_t a, std::uint32_t b, float length,
+                            EdgeState state = EdgeState::kUnknown);
   long long find_edge(std::uint32_t a, std::uint32_t b) const;
   // Room for this many edges in all.
   void reserve_edges(std::size_t edges) { edges_.reserve(edges); }

@@ -42,7 +42,8 @@ std::string PlanReport::text() const {
   const gplanner::PlanGpuCalls& c = result.gpu_calls;
   if (c.total > 0) {
     out << "gpu calls   " << c.total << ": state checks " << c.state_checks << ", k-NN " << c.knn
-        << ", edge checks " << c.edge_checks << ", shortcutting " << c.shortcutting << "\n";
+        << ", search " << c.search << ", edge checks " << c.edge_checks << ", shortcutting "
+        << c.shortcutting << "\n";
   }
   for (const std::string& file : written) out << "wrote       " << terminal_text(file) << "\n";
   return out.str();
@@ -87,6 +88,7 @@ nlohmann::ordered_json PlanReport::json() const {
           {"gpu_calls",
            {{"state_checks", result.gpu_calls.state_checks},
             {"knn", result.gpu_calls.knn},
+            {"search", result.gpu_calls.search},
             {"edge_checks", result.gpu_calls.edge_checks},
             {"shortcutting", result.gpu_calls.shortcutting},
             {"total", result.gpu_calls.total}}}};

@@ -198,6 +198,7 @@ class PyChecker {
     times["shortcutting"] = t.shortcutting;
     calls["state_checks"] = c.state_checks;
     calls["knn"] = c.knn;
+    calls["search"] = c.search;
     calls["edge_checks"] = c.edge_checks;
     calls["shortcutting"] = c.shortcutting;
     calls["total"] = c.total;

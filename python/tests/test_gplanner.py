@@ -91,6 +91,8 @@ def test_a_plan_passes_the_fine_recheck(tmp_path):
     assert result.stats["path_check"] == "certified"
     assert set(result.stats["times"]) == {"sampling", "state_checks", "knn", "search",
                                           "edge_checks", "shortcutting"}
+    assert set(result.stats["gpu_calls"]) == {"state_checks", "knn", "search", "edge_checks",
+                                              "shortcutting", "total"}
     assert result.stats["gpu_calls"]["total"] == 0  # the cpu backend
     # The same seed, the same path.
     again = gplanner.plan(scene, backend="cpu", seed=1, time_limit=60)

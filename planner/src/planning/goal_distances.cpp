@@ -1,5 +1,6 @@
 #include "gplanner/planner/planning/goal_distances.h"
 
+#include <atomic>
 #include <functional>
 #include <limits>
 #include <queue>
@@ -12,10 +13,8 @@ namespace gplanner {
 // of an index list and then each edge where it lies. (The piano's roadmap of 32,000
 // vertices and 377,000 edges: a Dijkstra 8.5 ms through edges_at, 5.7 ms through rows.)
 struct GoalDistances::Rows {
-  struct Entry {
-    std::uint32_t other, edge;
-    float length;
-  };
+  using Entry = WayEdge;
+  std::uint64_t id = 0;  // which rows a GPU holds: a number no other rows have had
   const Roadmap* roadmap = nullptr;
   std::size_t vertices = 0, edges = 0;
   std::vector<std::size_t> first;  // row v is entries[first[v], first[v + 1])
@@ -36,7 +35,9 @@ void GoalDistances::read_rows(const Roadmap& roadmap) {
   if (rows_ && rows_->roadmap == &roadmap && rows_->vertices == roadmap.vertex_count() &&
       rows_->edges == roadmap.edge_count())
     return;
+  static std::atomic<std::uint64_t> rows_made{0};
   auto rows = std::make_shared<Rows>();
+  rows->id = ++rows_made;
   rows->roadmap = &roadmap;
   rows->vertices = roadmap.vertex_count();
   rows->edges = roadmap.edge_count();
@@ -98,10 +99,32 @@ void GoalDistances::compute(const Roadmap& roadmap, std::uint32_t goal, bool val
   cost_.assign(roadmap.vertex_count(), kInf);
   via_.assign(roadmap.vertex_count(), kNone);
   affected_.assign(roadmap.vertex_count(), 0);
+  exact_ = true;
+  if (compute_on_gpu(goal)) return;
   MinQueue open;
   cost_[goal] = 0;
   open.emplace(0, goal);
   stopped_ = !settle(*rows_, usable_, should_stop_, &open, &cost_, &via_);
+}
+
+bool GoalDistances::compute_on_gpu(std::uint32_t goal) {
+  const Rows& rows = *rows_;
+  if (gpu_ == nullptr || rows.vertices < kGpuVertices) return false;
+  if (gpu_->roadmap_key() != rows.id)
+    gpu_->set_roadmap(rows.id, rows.first.data(), rows.vertices, rows.entries.data(), rows.edges);
+  switch (gpu_->compute(goal, usable_.data(), cost_.data(), via_.data(), should_stop_)) {
+    case GpuWayCosts::Outcome::kDone:
+      stopped_ = false;
+      return true;
+    case GpuWayCosts::Outcome::kStopped:
+      stopped_ = true;
+      return true;
+    case GpuWayCosts::Outcome::kNoFirstEdge:
+      break;
+  }
+  std::fill(cost_.begin(), cost_.end(), kInf);  // the host's Dijkstra from scratch
+  std::fill(via_.begin(), via_.end(), kNone);
+  return false;
 }
 
 std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
@@ -128,12 +151,17 @@ std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
   }
   // Past half of all vertices, a Dijkstra from the goal over all costs less than
   // repairing them (finding them, then seeding each from its neighbours): on lazy PRM's
-  // roadmaps an invalid edge near the goal leaves most of the roadmap affected.
-  const std::size_t most = cost_.size() / 2;
+  // roadmaps an invalid edge near the goal leaves most of the roadmap affected. On the
+  // GPU, past an eighth.
+  const bool on_gpu = gpu_ != nullptr && cost_.size() >= kGpuVertices;
+  const std::size_t most = cost_.size() / (on_gpu ? 8 : 2);
   for (std::size_t i = 0; i < found.size(); ++i) {
     if (found.size() > std::min(max_affected, most)) {
       for (const std::uint32_t u : found) affected_[u] = 0;
-      if (found.size() > max_affected) return max_affected + 1;
+      if (found.size() > max_affected) {
+        exact_ = false;
+        return max_affected + 1;
+      }
       compute(roadmap, goal_, valid_edges_only_);
       return cost_.size();
     }

@@ -185,7 +185,8 @@ int degrees_of_freedom(const ConfigurationMetric& metric) {
 // benchmarks/history/issue33_fewer_gpu_calls_500f1e5.md).
 class GpuNeighborFinder : public NeighborFinder {
  public:
-  GpuNeighborFinder(const ConfigurationMetric& metric, int device) : metric_(metric), gpu_(device) {
+  GpuNeighborFinder(const ConfigurationMetric& metric, int device)
+      : metric_(metric), device_(device), gpu_(device) {
     constexpr std::size_t kWarmPoints = 4096;
     constexpr int kWarmNeighbors = 16;
     const int width = metric.width();
@@ -208,11 +209,28 @@ class GpuNeighborFinder : public NeighborFinder {
     return true;
   }
   bool searches_all_points() const override { return true; }
-  std::size_t device_calls() const override { return device_calls_; }
+  std::size_t device_calls() const override {
+    return device_calls_ + (way_costs_ ? way_costs_->calls() : 0);
+  }
+  // Made at the first use, on the finder's device; none where that fails (the host
+  // computes the costs then).
+  GpuWayCosts* way_costs() override {
+    if (!way_costs_ && !way_costs_failed_) {
+      try {
+        way_costs_ = std::make_unique<GpuWayCosts>(device_);
+      } catch (const std::exception&) {
+        way_costs_failed_ = true;
+      }
+    }
+    return way_costs_.get();
+  }
 
  private:
   ConfigurationMetric metric_;
+  int device_;
   GpuNearestNeighbors gpu_;
+  std::unique_ptr<GpuWayCosts> way_costs_;
+  bool way_costs_failed_ = false;
   std::size_t device_calls_ = 0;
 };
 

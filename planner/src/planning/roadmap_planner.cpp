@@ -403,8 +403,9 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     std::uint32_t root = g, from = s;
     GoalDistances to_root;
     to_root.set_stop(stop_);
+    to_root.set_gpu(neighbors_->way_costs());
     {
-      StageTimer timer(&result.times.search);
+      StageTimer timer(&result.times.search, &result.gpu_calls.search, *checker_, neighbors_);
       to_root.compute(roadmap_, root, /*valid_edges_only=*/!lazy);
     }
     if (to_root.stopped()) {
@@ -413,12 +414,12 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     }
     // Edges found invalid: removed from to_root's ways, or the search turned round.
     auto remove_invalid = [&](const std::vector<std::uint32_t>& checked) {
-      StageTimer timer(&result.times.search);
+      StageTimer timer(&result.times.search, &result.gpu_calls.search, *checker_, neighbors_);
       std::vector<std::uint32_t> removed;
       for (const std::uint32_t e : checked)
         if (roadmap_.edge(e).state == EdgeState::kInvalid) removed.push_back(e);
-      const std::size_t half = roadmap_.vertex_count() / 2;
-      if (to_root.remove_edges(roadmap_, removed, half) > half) {
+      to_root.remove_edges(roadmap_, removed, roadmap_.vertex_count() / 2);
+      if (!to_root.exact()) {
         std::swap(root, from);
         to_root.compute(roadmap_, root, /*valid_edges_only=*/!lazy);
       }
@@ -426,7 +427,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     while (!out_of_time(&result) && !to_root.stopped()) {
       GraphPath path;
       {
-        StageTimer timer(&result.times.search);
+        StageTimer timer(&result.times.search, &result.gpu_calls.search, *checker_, neighbors_);
         path = shortest_path(roadmap_, to_root.cost(), from, root, /*valid_edges_only=*/!lazy,
                              ~std::size_t(0), stop_);
         ++result.searches;
@@ -439,7 +440,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       std::vector<std::uint32_t> unknown = unknown_edges(path);
       if (!unknown.empty()) {
         {
-          StageTimer timer(&result.times.search);
+          StageTimer timer(&result.times.search, &result.gpu_calls.search, *checker_, neighbors_);
           add_next_paths(to_root, from, root, path.vertices.size(), &unknown, &result);
         }
         check_edges(unknown, &result);

@@ -16,6 +16,7 @@
 #include "gplanner/planner/scene/scene.h"
 #include "planner/planning/costly_call_checker.h"
 #include "planner/scene_test_support.h"
+#include "require_gpu.h"
 #include "test_support.h"
 
 namespace gplanner {
@@ -73,7 +74,8 @@ TEST(RoadmapPlanner, GpuCallsAreCountedPerStage) {
   ASSERT_TRUE(result.solved) << result.stop_reason;
   const PlanGpuCalls& c = result.gpu_calls;
   EXPECT_EQ(c.total, costly.device_calls() - before);
-  EXPECT_EQ(c.total, c.state_checks + c.knn + c.edge_checks + c.shortcutting);
+  EXPECT_EQ(c.total, c.state_checks + c.knn + c.search + c.edge_checks + c.shortcutting);
+  EXPECT_EQ(c.search, 0u);  // the costs to the goal on the host
   EXPECT_GT(c.state_checks, 0u);
   EXPECT_EQ(c.knn, 0u);  // the k-NN ran on the CPU
   EXPECT_GT(c.edge_checks, 0u);
@@ -248,6 +250,51 @@ TEST(RoadmapPlanner, EachRoundJoinsItsMilestonesToTheirNearestOnce) {
   }
   EXPECT_EQ(first, roadmap.vertex_count());
   EXPECT_EQ(made, expected);
+}
+
+// The GPU finder with its GPU for the costs to the goal hidden: the host computes them.
+class WithoutWayCosts : public NeighborFinder {
+ public:
+  explicit WithoutWayCosts(NeighborFinder* finder) : finder_(finder) {}
+  std::string device() const override { return finder_->device(); }
+  bool nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end, int k,
+                  std::vector<int>* indices) override {
+    return finder_->nearest_of(points, n, first, end, k, indices);
+  }
+  bool searches_all_points() const override { return finder_->searches_all_points(); }
+  double query_cost(std::size_t n) const override { return finder_->query_cost(n); }
+  std::size_t device_calls() const override { return finder_->device_calls(); }
+  void reset() override { finder_->reset(); }
+
+ private:
+  NeighborFinder* finder_;
+};
+
+// Lazy PRM on the piano (rounds of 16,000 and 32,000 milestones) with its costs to the goal
+// computed on the GPU: the rounds, searches and path of the host's costs (the same costs,
+// bit for bit), the GPU's calls counted in the search stage.
+TEST(RoadmapPlannerGpu, CostsToTheGoalOnTheGpuGiveTheHostsPlan) {
+  REQUIRE_GPU();
+  Planning p("piano.yaml");
+  std::unique_ptr<NeighborFinder> gpu =
+      make_neighbor_finder(make_metric(p.scene.space, p.scene.planner), "gpu");
+  ASSERT_NE(gpu->way_costs(), nullptr);
+  WithoutWayCosts host(gpu.get());
+  PlanOptions options = plan_options(p.scene);
+  options.seed = 1;
+  RoadmapPlanner with_gpu(p.scene, &p.checker, gpu.get(), RoadmapStrategy::kLazyPrm, options);
+  const PlanResult a = with_gpu.solve(p.scene.start.data(), p.scene.goal.data());
+  RoadmapPlanner on_host(p.scene, &p.checker, &host, RoadmapStrategy::kLazyPrm, options);
+  const PlanResult b = on_host.solve(p.scene.start.data(), p.scene.goal.data());
+  ASSERT_TRUE(a.solved && b.solved);
+  EXPECT_GE(a.milestones, 2 * GoalDistances::kGpuVertices);
+  EXPECT_EQ(a.rounds, b.rounds);
+  EXPECT_EQ(a.path, b.path);
+  EXPECT_EQ(testing::path_problem(p.scene, a.path), "");
+  EXPECT_GT(a.gpu_calls.search, 0u);
+  EXPECT_EQ(b.gpu_calls.search, 0u);
+  EXPECT_EQ(a.gpu_calls.total, a.gpu_calls.state_checks + a.gpu_calls.knn + a.gpu_calls.search +
+                                   a.gpu_calls.edge_checks + a.gpu_calls.shortcutting);
 }
 
 // A roadmap file is input: a milestone in an obstacle, in a file with a valid checksum,

@@ -15,6 +15,13 @@
 // had at compute() and the edges given to remove_edges() since: another edge that turns
 // unusable is still counted usable (the costs stay a lower bound), and an edge that
 // turns usable (unknown to valid, with valid_edges_only) is not (call compute() again).
+//
+// Given a GPU (set_gpu), compute() runs there on roadmaps of kGpuVertices vertices or
+// more (GpuWayCosts: the same costs bit for bit, first edges that may differ where ways
+// tie), and remove_edges() computes every cost again there once more than an eighth of
+// the vertices are affected, rather than a half: on lazy PRM's roadmaps of the rigid
+// bodies (16,000 to 64,000 milestones) a Dijkstra over the host's memory took most of
+// the plan.
 
 #include <cstddef>
 #include <cstdint>
@@ -23,12 +30,19 @@
 #include <utility>
 #include <vector>
 
+#include "gplanner/knn_gpu/gpu_way_costs.h"
 #include "gplanner/planner/planning/roadmap.h"
 
 namespace gplanner {
 
 class GoalDistances {
  public:
+  // The fewest vertices whose costs compute() computes on the GPU given.
+  static constexpr std::size_t kGpuVertices = 8192;
+
+  // The GPU to compute on (nullptr: none), shared by copies; it must outlive them.
+  void set_gpu(GpuWayCosts* gpu) { gpu_ = gpu; }
+
   // Dijkstra from `goal` over the edges not invalid (with valid_edges_only: the valid
   // ones); infinity where a vertex cannot reach the goal.
   void compute(const Roadmap& roadmap, std::uint32_t goal, bool valid_edges_only);
@@ -38,11 +52,16 @@ class GoalDistances {
   // through one of them are computed again (where that is more than half of all, every
   // cost from the goal again: cheaper than repairing most of the roadmap). Returns how
   // many vertices that was. Where more than `max_affected` would be (max_affected below
-  // half of all), it changes nothing and returns max_affected + 1:
-  // the costs are then no longer exact, but still a consistent lower bound (taking
-  // edges away only lengthens ways), and must not be given edges to remove again.
+  // half of all), it changes nothing and returns max_affected + 1: the costs are then no
+  // longer exact (exact() is false until the next compute()), but still a consistent
+  // lower bound (taking edges away only lengthens ways), and must not be given edges to
+  // remove again.
   std::size_t remove_edges(const Roadmap& roadmap, const std::vector<std::uint32_t>& edges,
                            std::size_t max_affected = ~std::size_t(0) - 1);
+
+  // Whether the costs are exact: since compute(), no remove_edges() left them as they
+  // were (max_affected).
+  bool exact() const { return exact_; }
 
   // Shape [roadmap.vertex_count()] at the last compute; consistent: cost[v] <=
   // length(v, w) + cost[w] over every usable edge.
@@ -56,7 +75,11 @@ class GoalDistances {
  private:
   struct Rows;  // the roadmap's edges by vertex; read once by compute()
   void read_rows(const Roadmap& roadmap);
+  // compute() on the GPU; false where it did not (the costs then to compute on the host).
+  bool compute_on_gpu(std::uint32_t goal);
 
+  GpuWayCosts* gpu_ = nullptr;
+  bool exact_ = false;
   std::shared_ptr<const Rows> rows_;
   std::vector<std::uint8_t> usable_;  // per edge: at compute(), less those removed since
   bool valid_edges_only_ = false;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "gplanner/knn_gpu/configuration_metric.h"
+#include "gplanner/knn_gpu/gpu_way_costs.h"
 
 namespace gplanner {
 
@@ -41,6 +42,10 @@ class NeighborFinder {
   virtual double query_cost(std::size_t /*n*/) const { return 1; }
   // GPU calls made so far (as CollisionChecker::device_calls).
   virtual std::size_t device_calls() const { return 0; }
+  // Where the roadmap's costs to the goal are computed on the GPU (GoalDistances::set_gpu):
+  // the GPU finder's device, its calls counted in device_calls(); nullptr on the CPU
+  // (since 0.5.3).
+  virtual GpuWayCosts* way_costs() { return nullptr; }
   // Forgets every point given so far (a new roadmap follows).
   virtual void reset() {}
   // Polled during long work that is not a search (GNAT's insertions).

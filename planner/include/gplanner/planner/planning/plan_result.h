@@ -20,13 +20,14 @@ struct PlanTimes {
   double total = 0;         // the whole call
 };
 
-// GPU calls per stage of a plan (collision checks and k-NN; calls the gpu backend
-// answers on the host are none): a GPU call has a fixed cost of tens to hundreds of
-// microseconds, so on easy problems their count, not their size, makes the plan time.
+// GPU calls per stage of a plan (collision checks, k-NN and the search's costs to the
+// goal; calls the gpu backend answers on the host are none): a GPU call has a fixed cost of tens to
+// hundreds of microseconds, so on easy problems their count, not their size, makes the plan time.
 // All 0 on the CPU backends.
 struct PlanGpuCalls {
   std::size_t state_checks = 0;  // milestones
   std::size_t knn = 0;
+  std::size_t search = 0;        // lazy PRM's costs to the goal (since 0.5.3)
   std::size_t edge_checks = 0;   // edges, and the certification of the found path
   std::size_t shortcutting = 0;
   std::size_t total = 0;         // the whole call

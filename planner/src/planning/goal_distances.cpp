@@ -1,6 +1,8 @@
 #include "gplanner/planner/planning/goal_distances.h"
 
+#include <algorithm>
 #include <atomic>
+#include <exception>
 #include <functional>
 #include <limits>
 #include <queue>
@@ -110,9 +112,15 @@ void GoalDistances::compute(const Roadmap& roadmap, std::uint32_t goal, bool val
 bool GoalDistances::compute_on_gpu(std::uint32_t goal) {
   const Rows& rows = *rows_;
   if (gpu_ == nullptr || rows.vertices < kGpuVertices) return false;
-  if (gpu_->roadmap_key() != rows.id)
-    gpu_->set_roadmap(rows.id, rows.first.data(), rows.vertices, rows.entries.data(), rows.edges);
-  switch (gpu_->compute(goal, usable_.data(), cost_.data(), via_.data(), should_stop_)) {
+  GpuWayCosts::Outcome outcome = GpuWayCosts::Outcome::kNoFirstEdge;
+  try {
+    if (gpu_->roadmap_key() != rows.id)
+      gpu_->set_roadmap(rows.id, rows.first.data(), rows.vertices, rows.entries.data(), rows.edges);
+    outcome = gpu_->compute(goal, usable_.data(), cost_.data(), via_.data(), should_stop_);
+  } catch (const std::exception&) {
+    gpu_ = nullptr;  // the GPU failed (its memory, most likely): the host from now on
+  }
+  switch (outcome) {
     case GpuWayCosts::Outcome::kDone:
       stopped_ = false;
       return true;

@@ -17,10 +17,11 @@
 namespace gplanner {
 namespace {
 
-// `vertices` random points in the unit square, each joined to its nearest within a cell
-// grid's reach (radius), the states at random (a third valid, a tenth invalid), lengths
-// the distance times a random factor.
-Roadmap random_roadmap(std::mt19937* rng, std::uint32_t vertices, float radius) {
+// `vertices` random points in the unit square, each joined to the others within
+// `radius` (found through a grid of cells), the states at random (a tenth invalid,
+// `valid` of them valid, the others unknown), lengths the distance times a random factor.
+Roadmap random_roadmap(std::mt19937* rng, std::uint32_t vertices, float radius,
+                       float valid = 0.3f) {
   ConfigurationMetric metric;
   metric.joint_count = 2;
   std::uniform_real_distribution<float> coord(0, 1), factor(1, 1.5f), state(0, 1);
@@ -45,9 +46,9 @@ Roadmap random_roadmap(std::mt19937* rng, std::uint32_t vertices, float radius) 
           if (d >= radius) continue;
           const float s = state(*rng);
           roadmap.add_edge(a, b, d * factor(*rng),
-                           s < 0.1f   ? EdgeState::kInvalid
-                           : s < 0.4f ? EdgeState::kValid
-                                      : EdgeState::kUnknown);
+                           s < 0.1f           ? EdgeState::kInvalid
+                           : s < 0.1f + valid ? EdgeState::kValid
+                                              : EdgeState::kUnknown);
         }
       }
     }
@@ -82,8 +83,8 @@ TEST(GpuWayCostsGpu, SameCostsAsTheHostsDijkstra) {
   std::mt19937 rng(21);
   for (int trial = 0; trial < 6; ++trial) {
     const std::uint32_t n = trial < 3 ? 500 : 20000;
-    Roadmap roadmap = random_roadmap(&rng, n, trial < 3 ? 0.08f : 0.02f);
-    const bool valid_only = trial % 2 == 1;
+    const bool valid_only = trial % 2 == 1;  // PRM's: mostly valid edges
+    Roadmap roadmap = random_roadmap(&rng, n, trial < 3 ? 0.08f : 0.02f, valid_only ? 0.7f : 0.3f);
     const std::uint32_t goal = n / 3;
     GoalDistances host;
     host.compute(roadmap, goal, valid_only);
@@ -165,8 +166,8 @@ TEST(GoalDistancesGpu, StayExactWhileEdgesTurnInvalid) {
   std::mt19937 rng(23);
   std::size_t batches = 0, computed_again = 0;
   for (int trial = 0; trial < 2; ++trial) {
-    Roadmap roadmap = random_roadmap(&rng, 20000, 0.02f);
     const bool valid_only = trial == 1;
+    Roadmap roadmap = random_roadmap(&rng, 20000, 0.02f, valid_only ? 0.7f : 0.3f);
     GoalDistances kept;
     kept.set_gpu(&gpu);
     kept.compute(roadmap, 1, valid_only);
@@ -175,13 +176,13 @@ TEST(GoalDistancesGpu, StayExactWhileEdgesTurnInvalid) {
       const GraphPath path = shortest_path(roadmap, kept.cost(), 0, 1, valid_only);
       if (path.vertices.empty()) break;
       EXPECT_LE(path.expanded, path.vertices.size() + path.vertices.size() / 10 + 2);
-      // Edges near the goal too (the path's last), which many ways pass; every tenth
-      // batch all the goal's edges but one, which leaves most of the roadmap affected.
-      std::vector<std::uint32_t> removed = {path.edges.back(), path.edges[path.edges.size() / 2],
+      // One of the path's edges and one at random; every fifth batch the goal's edges but
+      // the path's last, which leaves much of the roadmap affected.
+      std::vector<std::uint32_t> removed = {path.edges[path.edges.size() / 2],
                                             static_cast<std::uint32_t>(pick_edge(rng))};
-      if (batch % 10 == 5) {
-        const std::vector<std::uint32_t>& at_goal = roadmap.edges_at(1);
-        removed.insert(removed.end(), at_goal.begin() + 1, at_goal.end());
+      if (batch % 5 == 2) {
+        for (const std::uint32_t e : roadmap.edges_at(1))
+          if (e != path.edges.back()) removed.push_back(e);
       }
       for (const std::uint32_t e : removed) roadmap.edge(e).state = EdgeState::kInvalid;
       const std::size_t calls = gpu.calls();

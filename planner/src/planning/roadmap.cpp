@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "gplanner/common/parallel_for.h"
+
 namespace gplanner {
 
 std::uint32_t Roadmap::add_vertex(const float* q) {
@@ -19,6 +21,8 @@ std::uint32_t Roadmap::add_vertex(const float* q) {
 
 namespace {
 constexpr std::size_t kFirstEdgeRoom = 32;
+// Fewer new edges than this are put in their ends' lists on the calling thread alone.
+constexpr std::size_t kEdgesPerThread = 16384;
 }  // namespace
 
 long long Roadmap::add_edge(std::uint32_t a, std::uint32_t b, float length, EdgeState state) {
@@ -38,6 +42,37 @@ std::uint32_t Roadmap::append_edge(std::uint32_t a, std::uint32_t b, float lengt
     adjacency_[v].push_back(e);
   }
   return e;
+}
+
+std::size_t Roadmap::append_edges(const RoadmapEdge* edges, std::size_t count) {
+  const std::size_t first = edges_.size();
+  edges_.reserve(first + count);
+  for (std::size_t i = 0; i < count; ++i) {
+    RoadmapEdge edge = edges[i];
+    if (edge.a > edge.b) std::swap(edge.a, edge.b);
+    edges_.push_back(edge);
+  }
+  // Each part of the vertices (a range) on a thread of its own: it goes through all the
+  // new edges in order and appends those at its vertices, so that every list stays in
+  // index order.
+  const std::size_t n = adjacency_.size();
+  const std::size_t parts = count < kEdgesPerThread ? 1 : resolve_thread_count(0);
+  parallel_for(
+      parts, static_cast<int>(parts),
+      [&](std::size_t begin, std::size_t end, int) {
+        for (std::size_t part = begin; part < end; ++part) {
+          const std::size_t lo = part * n / parts, hi = (part + 1) * n / parts;
+          for (std::size_t e = first; e < first + count; ++e) {
+            for (const std::uint32_t v : {edges_[e].a, edges_[e].b}) {
+              if (v < lo || v >= hi) continue;
+              if (adjacency_[v].empty()) adjacency_[v].reserve(kFirstEdgeRoom);
+              adjacency_[v].push_back(static_cast<std::uint32_t>(e));
+            }
+          }
+        }
+      },
+      1);
+  return first;
 }
 
 long long Roadmap::find_edge(std::uint32_t a, std::uint32_t b) const {

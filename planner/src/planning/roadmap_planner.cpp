@@ -211,6 +211,11 @@ bool RoadmapPlanner::connect(PlanResult* result) {
       const int* row = &nearest[(u - first) * k];
       return std::find(row, row + within, static_cast<int>(x)) != row + within;
     };
+    // The new milestones' edges in order, all at once where none may exist already (the
+    // usual case: every new milestone's edges are new but those its nearest made).
+    const bool all_fresh = first >= fresh && first == call_first;
+    std::vector<RoadmapEdge> appended;
+    if (all_fresh) appended.reserve((end - first) * k);
     for (std::size_t v = first; v < end; ++v) {
       for (int j = 0; j < k; ++j) {
         const int w = nearest[(v - first) * k + j];
@@ -221,10 +226,15 @@ bool RoadmapPlanner::connect(PlanResult* result) {
         if (v < fresh || (u >= call_first && u < first)) {
           roadmap_.add_edge(a, b, length);  // may exist: looked for
         } else if (u != v && !lists(v, u, j) && !(u >= first && u < v && lists(u, v, k))) {
-          roadmap_.append_edge(a, b, length);
+          if (all_fresh) {
+            appended.push_back({a, b, length, EdgeState::kUnknown});
+          } else {
+            roadmap_.append_edge(a, b, length);
+          }
         }
       }
     }
+    roadmap_.append_edges(appended.data(), appended.size());
     connected_ = first = end;
   }
   return true;

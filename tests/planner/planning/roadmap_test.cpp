@@ -51,6 +51,47 @@ std::string load_error(const Scene& scene, const std::string& path) {
   return "";
 }
 
+// Edges appended in bulk (on the host's threads past 16,384) make the roadmap that adding
+// them one by one makes: the same edges in the same order, each vertex's list in index
+// order, ends swapped so that a < b.
+TEST(Roadmap, AppendedEdgesAreThoseAddedOneByOne) {
+  for (const std::size_t count : {std::size_t(50), std::size_t(40000)}) {
+    const std::uint32_t n = 3000;
+    Roadmap one_by_one(1), bulk(1), single(1);
+    for (std::uint32_t v = 0; v < n; ++v) {
+      const float q = static_cast<float>(v);
+      one_by_one.add_vertex(&q);
+      bulk.add_vertex(&q);
+      single.add_vertex(&q);
+    }
+    std::mt19937 rng(static_cast<unsigned>(count));
+    std::uniform_int_distribution<std::uint32_t> pick(0, n - 1);
+    std::vector<RoadmapEdge> edges;
+    one_by_one.add_edge(0, 1, 1.0f);  // one already there: the bulk's indices follow it
+    bulk.add_edge(0, 1, 1.0f);
+    single.add_edge(0, 1, 1.0f);
+    while (edges.size() < count) {
+      const std::uint32_t a = pick(rng), b = pick(rng);
+      const float length = static_cast<float>(edges.size());
+      if (one_by_one.add_edge(a, b, length, EdgeState::kValid) < 0) continue;
+      edges.push_back({a, b, length, EdgeState::kValid});
+      single.append_edge(a, b, length, EdgeState::kValid);
+    }
+    EXPECT_EQ(bulk.append_edges(edges.data(), edges.size()), 1u);
+    for (const Roadmap* r : {&bulk, &single}) {
+      ASSERT_EQ(r->edge_count(), one_by_one.edge_count());
+      for (std::size_t e = 0; e < r->edge_count(); ++e) {
+        EXPECT_EQ(r->edge(e).a, one_by_one.edge(e).a);
+        EXPECT_EQ(r->edge(e).b, one_by_one.edge(e).b);
+        EXPECT_LT(r->edge(e).a, r->edge(e).b);
+        EXPECT_EQ(r->edge(e).length, one_by_one.edge(e).length);
+        EXPECT_EQ(r->edge(e).state, one_by_one.edge(e).state);
+      }
+      for (std::uint32_t v = 0; v < n; ++v) ASSERT_EQ(r->edges_at(v), one_by_one.edges_at(v));
+    }
+  }
+}
+
 TEST(Roadmap, AddsEachEdgeOnceEitherWayRound) {
   Roadmap roadmap(2);
   const float a[] = {0, 0}, b[] = {1, 0}, c[] = {0, 1};

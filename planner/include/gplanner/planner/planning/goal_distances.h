@@ -38,7 +38,7 @@ namespace gplanner {
 class GoalDistances {
  public:
   // The fewest vertices whose costs compute() computes on the GPU given.
-  static constexpr std::size_t kGpuVertices = 8192;
+  static constexpr std::size_t kGpuVertices = 4096;
 
   // The GPU to compute on (nullptr: none), shared by copies; it must outlive them.
   void set_gpu(GpuWayCosts* gpu) { gpu_ = gpu; }

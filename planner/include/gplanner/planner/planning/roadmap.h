@@ -51,6 +51,10 @@ class Roadmap {
   // (Since 0.5.3: lazy PRM's new milestones, whose k nearest say which edges exist.)
   std::uint32_t append_edge(std::uint32_t a, std::uint32_t b, float length,
                             EdgeState state = EdgeState::kUnknown);
+  // Appends `count` edges that the roadmap does not have (nor any twice), each a != b, in
+  // their order, their ends' lists filled on the host's threads; returns the first one's
+  // index. (Since 0.5.3.)
+  std::size_t append_edges(const RoadmapEdge* edges, std::size_t count);
   long long find_edge(std::uint32_t a, std::uint32_t b) const;
   // Room for this many edges in all.
   void reserve_edges(std::size_t edges) { edges_.reserve(edges); }

@@ -44,6 +44,14 @@ std::uint32_t Roadmap::append_edge(std::uint32_t a, std::uint32_t b, float lengt
   return e;
 }
 
+void Roadmap::reserve_vertices(std::size_t vertices) {
+  try {
+    vertices_.reserve(vertices * static_cast<std::size_t>(width_));
+    adjacency_.reserve(vertices);
+  } catch (const std::exception&) {  // std::bad_alloc, std::length_error
+  }
+}
+
 std::size_t Roadmap::append_edges(const RoadmapEdge* edges, std::size_t count) {
   const std::size_t first = edges_.size();
   edges_.reserve(first + count);

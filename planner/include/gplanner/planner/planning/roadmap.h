@@ -58,6 +58,9 @@ class Roadmap {
   long long find_edge(std::uint32_t a, std::uint32_t b) const;
   // Room for this many edges in all.
   void reserve_edges(std::size_t edges) { edges_.reserve(edges); }
+  // Room for this many vertices in all (since 0.5.3); none made where the allocation
+  // fails (the roadmap then grows as vertices come).
+  void reserve_vertices(std::size_t vertices);
 
  private:
   int width_;

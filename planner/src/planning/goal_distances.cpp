@@ -154,6 +154,7 @@ bool GoalDistances::compute_on_gpu(std::uint32_t goal) {
 std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
                                         const std::vector<std::uint32_t>& edges,
                                         std::size_t max_affected) {
+  if (!rows_) return 0;  // nothing computed yet: no costs to repair
   const Rows& rows = *rows_;
   // The affected vertices: those whose first edge to the goal was removed, and then
   // every vertex whose way goes through an affected one (the tree of ways below them,

@@ -414,6 +414,9 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
     // MotionBenchMaker's cage, the way into the cage about the goal), the search turns
     // round, from the goal to the start, led by the costs to the start, computed once;
     // the invalid edges then lie at the far end of most ways, and their repairs are small.
+    // Where the finder has a GPU for the costs (NeighborFinder::way_costs), roadmaps of
+    // GoalDistances::kGpuVertices or more have them computed there, and a repair past an
+    // eighth of the roadmap computes them all again there: the search does not turn.
     std::uint32_t root = g, from = s;
     GoalDistances to_root;
     to_root.set_stop(stop_);

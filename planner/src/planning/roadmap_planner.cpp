@@ -64,9 +64,11 @@ void RoadmapPlanner::set_roadmap(Roadmap roadmap) {
   neighbors_->reset();
   loaded_unchecked_ = roadmap_.vertex_count();
   const ConfigurationMetric& metric = local_.metric();
+  valid_edges_ = 0;
   for (std::size_t e = 0; e < roadmap_.edge_count(); ++e) {
     RoadmapEdge& edge = roadmap_.edge(e);
     edge.length = configuration_distance(metric, roadmap_.vertex(edge.a), roadmap_.vertex(edge.b));
+    valid_edges_ += edge.state == EdgeState::kValid;
   }
 }
 
@@ -86,7 +88,7 @@ bool RoadmapPlanner::check_loaded_milestones(PlanResult* result) {
     for (std::size_t i = 0; i < count; ++i) {
       if (!colliding[i]) continue;
       for (const std::uint32_t e : roadmap_.edges_at(first + i))
-        roadmap_.edge(e).state = EdgeState::kInvalid;
+        set_edge_state(e, EdgeState::kInvalid);
     }
     loaded_unchecked_ = first;
   }
@@ -103,12 +105,17 @@ bool RoadmapPlanner::out_of_time(PlanResult* result) const {
   return why != nullptr;
 }
 
+void RoadmapPlanner::set_edge_state(std::uint32_t e, EdgeState state) {
+  EdgeState& now = roadmap_.edge(e).state;
+  if (now == EdgeState::kValid) --valid_edges_;
+  if (state == EdgeState::kValid) ++valid_edges_;
+  now = state;
+}
+
 void RoadmapPlanner::report(const char* stage, const PlanResult& result) const {
   if (!options_.progress) return;
-  std::size_t valid = 0;
-  for (const RoadmapEdge& e : roadmap_.edges()) valid += e.state == EdgeState::kValid;
-  options_.progress(
-      {stage, result.rounds, roadmap_.vertex_count(), roadmap_.edge_count(), valid, elapsed()});
+  options_.progress({stage, result.rounds, roadmap_.vertex_count(), roadmap_.edge_count(),
+                     valid_edges_, elapsed()});
 }
 
 std::size_t RoadmapPlanner::add_milestones(std::size_t count, PlanResult* result) {
@@ -272,7 +279,7 @@ void RoadmapPlanner::add_next_paths(const GoalDistances& to_goal, std::uint32_t 
     return samples;
   };
   std::size_t samples = samples_of(*batch);
-  for (const std::uint32_t e : *batch) roadmap_.edge(e).state = EdgeState::kInvalid;
+  for (const std::uint32_t e : *batch) set_edge_state(e, EdgeState::kInvalid);
   // The costs to the goal with the batch set aside, kept exact the same way while that
   // searches again at most kRepair times the shortest path's vertices, so that each
   // search goes straight along the next path (led by to_goal itself the searches went
@@ -295,12 +302,12 @@ void RoadmapPlanner::add_next_paths(const GoalDistances& to_goal, std::uint32_t 
     samples += samples_of(unknown);
     if (samples > sample_budget) break;
     for (const std::uint32_t e : unknown) {
-      roadmap_.edge(e).state = EdgeState::kInvalid;
+      set_edge_state(e, EdgeState::kInvalid);
       batch->push_back(e);
     }
     if (exact) exact = aside.remove_edges(roadmap_, unknown, max_repair) <= max_repair;
   }
-  for (const std::uint32_t e : *batch) roadmap_.edge(e).state = EdgeState::kUnknown;
+  for (const std::uint32_t e : *batch) set_edge_state(e, EdgeState::kUnknown);
 }
 
 void RoadmapPlanner::set_options(const PlanOptions& options) {
@@ -345,7 +352,7 @@ void RoadmapPlanner::check_edges(const std::vector<std::uint32_t>& edges, PlanRe
                             &invalid))
       return;
     for (std::size_t i = 0; i < part.size(); ++i) {
-      roadmap_.edge(part[i]).state = invalid[i] ? EdgeState::kInvalid : EdgeState::kValid;
+      set_edge_state(part[i], invalid[i] ? EdgeState::kInvalid : EdgeState::kValid);
       if (certified && !invalid[i]) certified_.insert(part[i]);
     }
     result->edges_checked += part.size();
@@ -483,7 +490,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       bool certified = true;
       for (std::size_t i = 0; i < unchecked.size(); ++i) {
         if (invalid[i]) {
-          roadmap_.edge(unchecked[i]).state = EdgeState::kInvalid;
+          set_edge_state(unchecked[i], EdgeState::kInvalid);
           certified = false;
         } else {
           certified_.insert(unchecked[i]);

@@ -297,6 +297,40 @@ TEST(RoadmapPlannerGpu, CostsToTheGoalOnTheGpuGiveTheHostsPlan) {
                                    a.gpu_calls.edge_checks + a.gpu_calls.shortcutting);
 }
 
+// Every progress report's count of valid edges is the roadmap's, on PRM (most edges
+// checked), lazy PRM (edges set aside and back) and a loaded roadmap (its file's states,
+// then its milestones checked).
+TEST(RoadmapPlanner, ProgressCountsTheValidEdges) {
+  Planning p("pr2_base_arm.yaml");
+  testing::ScratchFolder scratch;
+  for (const RoadmapStrategy strategy : {RoadmapStrategy::kPrm, RoadmapStrategy::kLazyPrm}) {
+    PlanOptions options = plan_options(p.scene);
+    options.milestones = 250;
+    options.seed = 1;
+    const RoadmapPlanner* watched = nullptr;
+    std::size_t reports = 0, most_valid = 0;
+    options.progress = [&](const PlanProgress& progress) {
+      std::size_t valid = 0;
+      for (const RoadmapEdge& e : watched->roadmap().edges()) valid += e.state == EdgeState::kValid;
+      EXPECT_EQ(progress.edges_valid, valid) << progress.stage << ", round " << progress.round;
+      most_valid = std::max(most_valid, valid);
+      ++reports;
+    };
+    RoadmapPlanner first(p.scene, &p.checker, p.neighbors.get(), strategy, options);
+    watched = &first;
+    ASSERT_TRUE(first.solve(p.scene.start.data(), p.scene.goal.data()).solved);
+    EXPECT_GT(reports, 2u);
+    EXPECT_GT(most_valid, 0u);
+    save_roadmap(first.roadmap(), p.scene, scratch.path() + "/r.roadmap");
+    RoadmapPlanner second(p.scene, &p.checker, p.neighbors.get(), strategy, options);
+    second.set_roadmap(load_roadmap(p.scene, scratch.path() + "/r.roadmap"));
+    watched = &second;
+    reports = 0;
+    ASSERT_TRUE(second.solve(p.scene.start.data(), p.scene.goal.data()).solved);
+    EXPECT_GT(reports, 0u);
+  }
+}
+
 // A roadmap file is input: a milestone in an obstacle, in a file with a valid checksum,
 // loses its edges (even those the file calls valid) before any search.
 TEST(RoadmapPlanner, ALoadedMilestoneInAnObstacleLosesItsEdges) {
@@ -326,10 +360,22 @@ TEST(RoadmapPlanner, ALoadedMilestoneInAnObstacleLosesItsEdges) {
   PlanOptions options = plan_options(p.scene);
   options.milestones = 200;
   options.time_limit_s = 2;
+  // The progress reports count the valid edges as the roadmap has them: the file's two
+  // valid edges no longer, once their milestone is found colliding.
+  const RoadmapPlanner* watched = nullptr;
+  std::size_t reports = 0;
+  options.progress = [&](const PlanProgress& progress) {
+    std::size_t valid = 0;
+    for (const RoadmapEdge& e : watched->roadmap().edges()) valid += e.state == EdgeState::kValid;
+    EXPECT_EQ(progress.edges_valid, valid) << progress.stage << ", round " << progress.round;
+    ++reports;
+  };
   RoadmapPlanner planner(p.scene, &p.checker, p.neighbors.get(), RoadmapStrategy::kLazyPrm,
                          options);
+  watched = &planner;
   planner.set_roadmap(load_roadmap(p.scene, scratch.path() + "/r.roadmap"));
   const PlanResult result = planner.solve(p.scene.start.data(), p.scene.goal.data());
+  EXPECT_GT(reports, 0u);
   if (result.solved) EXPECT_EQ(testing::path_problem(p.scene, result.path), "");
   const Roadmap& roadmap = planner.roadmap();
   EXPECT_EQ(roadmap.edge(0).state, EdgeState::kInvalid);

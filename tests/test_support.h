@@ -71,7 +71,7 @@ inline constexpr const char* kCubeObj =
 
 // A scene named `name` of the cube above (cube.obj, beside the scene) as a rigid robot
 // among `obstacles` (YAML list entries, a line "  - ..." each), from start x = -1 to goal
-// x = 1 within the bounds of kCubeAndThinWallScene below.
+// x = 1 within x -2 to 2, y -1.5 to 1.5, z -1 to 1.
 inline std::string cube_scene(const std::string& name, const std::string& obstacles) {
   return "name: " + name + "\nrobot:\n  mesh: cube.obj\nobstacles:\n" + obstacles +
          R"(bounds:
@@ -86,18 +86,7 @@ goal:
 
 // A scene of the cube above (cube.obj, beside the scene) as a rigid robot, and a wall 2 cm
 // thick across x = 0, from start x = -1 to goal x = 1.
-inline constexpr const char* kCubeAndThinWallScene = R"(name: thin_wall
-robot:
-  mesh: cube.obj
-obstacles:
-  - box: [0.02, 10, 10]
-bounds:
-  min: [-2, -1.5, -1]
-  max: [2, 1.5, 1]
-start:
-  base: {xyz: [-1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-goal:
-  base: {xyz: [1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-)";
+inline const std::string kCubeAndThinWallScene =
+    cube_scene("thin_wall", "  - box: [0.02, 10, 10]\n");
 
 }  // namespace gplanner::testing

@@ -28,25 +28,17 @@ namespace {
 
 // The cube of side 0.2 from x = -1 to x = 1 through a wall 2 cm thick across x = 0 whose
 // only opening is a square hole of side 0.4 about y = 0.8, z = 0.4.
-constexpr const char* kWallWithAHole = R"(name: wall_with_a_hole
-robot:
-  mesh: cube.obj
-obstacles:
-  - {name: below, box: [0.02, 10, 5.2], pose: {xyz: [0, 0, -2.4]}}
-  - {name: above, box: [0.02, 10, 4.4], pose: {xyz: [0, 0, 2.8]}}
-  - {name: left, box: [0.02, 5.6, 0.4], pose: {xyz: [0, -2.2, 0.4]}}
-  - {name: right, box: [0.02, 4, 0.4], pose: {xyz: [0, 3, 0.4]}}
-bounds:
-  min: [-2, -1.5, -1]
-  max: [2, 1.5, 1]
-start:
-  base: {xyz: [-1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-goal:
-  base: {xyz: [1, 0, 0], quat_wxyz: [1, 0, 0, 0]}
-)";
+std::string wall_with_a_hole() {
+  return testing::cube_scene(
+      "wall_with_a_hole",
+      "  - {name: below, box: [0.02, 10, 5.2], pose: {xyz: [0, 0, -2.4]}}\n"
+      "  - {name: above, box: [0.02, 10, 4.4], pose: {xyz: [0, 0, 2.8]}}\n"
+      "  - {name: left, box: [0.02, 5.6, 0.4], pose: {xyz: [0, -2.2, 0.4]}}\n"
+      "  - {name: right, box: [0.02, 4, 0.4], pose: {xyz: [0, 3, 0.4]}}\n");
+}
 
 struct Problem {
-  explicit Problem(const char* scene_text) {
+  explicit Problem(const std::string& scene_text) {
     folder.write("cube.obj", testing::kCubeObj);
     scene = std::make_unique<Scene>(load_scene(folder.write("scene.yaml", scene_text)));
     checker = std::make_unique<CpuChecker>(*scene);
@@ -82,7 +74,7 @@ std::vector<std::pair<double, double>> wall_crossings(const std::vector<float>& 
 }
 
 TEST(TreePlanner, GoesThroughTheOnlyHoleOfAWall) {
-  Problem p(kWallWithAHole);
+  Problem p(wall_with_a_hole());
   const PlanResult result = p.plan(p.options(1));
   ASSERT_TRUE(result.solved) << result.stop_reason;
   EXPECT_EQ(testing::path_problem(*p.scene, result.path), "");
@@ -135,7 +127,7 @@ TEST(TreePlanner, NoPathThroughAClosedWallWithTheFineRecheckEither) {
 }
 
 TEST(TreePlanner, SameSeedSamePathOtherSeedOtherPath) {
-  Problem p(kWallWithAHole);
+  Problem p(wall_with_a_hole());
   const PlanResult a = p.plan(p.options(3));
   const PlanResult b = p.plan(p.options(3));
   const PlanResult c = p.plan(p.options(4));
@@ -161,7 +153,7 @@ TEST(TreePlanner, StopConditionIsHonoured) {
 // Where a call has a fixed cost, each round is one call, and the rounds fill calls of
 // about that many configurations (a checker that counts each call as a GPU call).
 TEST(TreePlanner, OneCallARoundWhereCallsCost) {
-  Problem p(kWallWithAHole);
+  Problem p(wall_with_a_hole());
   testing::CostlyCallChecker costly(*p.scene, 8192);
   TreePlanner planner(*p.scene, &costly, p.options(1));
   const PlanResult result = planner.solve(p.scene->start.data(), p.scene->goal.data());
@@ -238,9 +230,7 @@ TEST(TreePlanner, RoundsAfterOnesThatAddFewNodesAreNotDrawnAhead) {
     }
     return text;
   };
-  const std::string scene =
-      testing::cube_scene("boxed_in", box_about("start", -1) + box_about("goal", 1));
-  Problem p(scene.c_str());
+  Problem p(testing::cube_scene("boxed_in", box_about("start", -1) + box_about("goal", 1)));
   testing::CostlyCallChecker costly(*p.scene, 8192);
   constexpr std::size_t kRounds = 20;
   PlanOptions options = p.options(1);
@@ -259,7 +249,7 @@ TEST(TreePlanner, RoundsAfterOnesThatAddFewNodesAreNotDrawnAhead) {
 // every row: the same path for the same seed and lanes, with the same rounds drawn ahead
 // (beside the call, or before the host's checks).
 TEST(TreePlanner, HostChecksWithEarlyStopsGrowTheSameTreesAsOneCall) {
-  Problem p(kWallWithAHole);
+  Problem p(wall_with_a_hole());
   PlanOptions options = p.options(5);
   options.tree_lanes = 8;
   options.shortcut_rounds = 0;

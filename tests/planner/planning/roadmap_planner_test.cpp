@@ -297,6 +297,22 @@ TEST(RoadmapPlannerGpu, CostsToTheGoalOnTheGpuGiveTheHostsPlan) {
                                    a.gpu_calls.edge_checks + a.gpu_calls.shortcutting);
 }
 
+// Checks each progress report of the planner it watches (set `watched` once it is made
+// with the options given): its count of valid edges must be the roadmap's.
+struct ValidEdgeCounts {
+  explicit ValidEdgeCounts(PlanOptions* options) {
+    options->progress = [this](const PlanProgress& progress) {
+      std::size_t valid = 0;
+      for (const RoadmapEdge& e : watched->roadmap().edges()) valid += e.state == EdgeState::kValid;
+      EXPECT_EQ(progress.edges_valid, valid) << progress.stage << ", round " << progress.round;
+      most_valid = std::max(most_valid, valid);
+      ++reports;
+    };
+  }
+  const RoadmapPlanner* watched = nullptr;
+  std::size_t reports = 0, most_valid = 0;
+};
+
 // Every progress report's count of valid edges is the roadmap's, on PRM (most edges
 // checked), lazy PRM (edges set aside and back) and a loaded roadmap (its file's states,
 // then its milestones checked).
@@ -307,27 +323,19 @@ TEST(RoadmapPlanner, ProgressCountsTheValidEdges) {
     PlanOptions options = plan_options(p.scene);
     options.milestones = 250;
     options.seed = 1;
-    const RoadmapPlanner* watched = nullptr;
-    std::size_t reports = 0, most_valid = 0;
-    options.progress = [&](const PlanProgress& progress) {
-      std::size_t valid = 0;
-      for (const RoadmapEdge& e : watched->roadmap().edges()) valid += e.state == EdgeState::kValid;
-      EXPECT_EQ(progress.edges_valid, valid) << progress.stage << ", round " << progress.round;
-      most_valid = std::max(most_valid, valid);
-      ++reports;
-    };
+    ValidEdgeCounts counts(&options);
     RoadmapPlanner first(p.scene, &p.checker, p.neighbors.get(), strategy, options);
-    watched = &first;
+    counts.watched = &first;
     ASSERT_TRUE(first.solve(p.scene.start.data(), p.scene.goal.data()).solved);
-    EXPECT_GT(reports, 2u);
-    EXPECT_GT(most_valid, 0u);
+    EXPECT_GT(counts.reports, 2u);
+    EXPECT_GT(counts.most_valid, 0u);
     save_roadmap(first.roadmap(), p.scene, scratch.path() + "/r.roadmap");
     RoadmapPlanner second(p.scene, &p.checker, p.neighbors.get(), strategy, options);
     second.set_roadmap(load_roadmap(p.scene, scratch.path() + "/r.roadmap"));
-    watched = &second;
-    reports = 0;
+    counts.watched = &second;
+    counts.reports = 0;
     ASSERT_TRUE(second.solve(p.scene.start.data(), p.scene.goal.data()).solved);
-    EXPECT_GT(reports, 0u);
+    EXPECT_GT(counts.reports, 0u);
   }
 }
 
@@ -362,20 +370,13 @@ TEST(RoadmapPlanner, ALoadedMilestoneInAnObstacleLosesItsEdges) {
   options.time_limit_s = 2;
   // The progress reports count the valid edges as the roadmap has them: the file's two
   // valid edges no longer, once their milestone is found colliding.
-  const RoadmapPlanner* watched = nullptr;
-  std::size_t reports = 0;
-  options.progress = [&](const PlanProgress& progress) {
-    std::size_t valid = 0;
-    for (const RoadmapEdge& e : watched->roadmap().edges()) valid += e.state == EdgeState::kValid;
-    EXPECT_EQ(progress.edges_valid, valid) << progress.stage << ", round " << progress.round;
-    ++reports;
-  };
+  ValidEdgeCounts counts(&options);
   RoadmapPlanner planner(p.scene, &p.checker, p.neighbors.get(), RoadmapStrategy::kLazyPrm,
                          options);
-  watched = &planner;
+  counts.watched = &planner;
   planner.set_roadmap(load_roadmap(p.scene, scratch.path() + "/r.roadmap"));
   const PlanResult result = planner.solve(p.scene.start.data(), p.scene.goal.data());
-  EXPECT_GT(reports, 0u);
+  EXPECT_GT(counts.reports, 0u);
   if (result.solved) EXPECT_EQ(testing::path_problem(p.scene, result.path), "");
   const Roadmap& roadmap = planner.roadmap();
   EXPECT_EQ(roadmap.edge(0).state, EdgeState::kInvalid);

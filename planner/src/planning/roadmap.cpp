@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "gplanner/common/parallel_for.h"
+#include "gplanner/knn_gpu/gpu_way_costs.h"
 
 namespace gplanner {
 
@@ -101,8 +102,10 @@ double roadmap_bytes(std::size_t milestones, int width, int neighbors) {
   // GoalDistances' row start; per edge (up to k a vertex): the edge, and its length and
   // neighbour index while made, and GoalDistances' two row entries and usability.
   const double per_vertex = width * sizeof(float) + sizeof(std::vector<std::uint32_t>) +
-                            std::max(32.0, 2.0 * neighbors) * sizeof(std::uint32_t) + 40.0;
-  const double per_edge = sizeof(RoadmapEdge) + sizeof(float) + sizeof(int) + 2 * 12.0 + 1;
+                            std::max(32.0, 2.0 * neighbors) * sizeof(std::uint32_t) + 32.0 +
+                            sizeof(std::size_t);
+  const double per_edge = sizeof(RoadmapEdge) + sizeof(float) + sizeof(int) + 2 * sizeof(WayEdge) +
+                          sizeof(std::uint8_t);
   return static_cast<double>(milestones) * (per_vertex + neighbors * per_edge);
 }
 

@@ -47,8 +47,10 @@ const char* const kBenchUsage =
     "      writes DIR (default gplan-bench-NAME-DATE-TIME; a new or empty folder):\n"
     "      results.csv, summary.txt (also printed), ompl/SCENE.log (OMPL's benchmark log,\n"
     "      for ompl_benchmark_statistics), plots/ (PNG and SVG, with matplotlib);\n"
-    "      --jobs: OMPL's planners on one thread (@fcl, @gpu) run N at a time, one on\n"
-    "      each GPU; --gpus: the gpu groups use at most N of the GPUs the machine shows\n"
+    "      --jobs: OMPL's planners on one thread (@fcl, @gpu) run N at a time (default\n"
+    "      1), one on each GPU: faster runs, but each slower than alone (the summary\n"
+    "      says so): compare planners with 1; --gpus: the gpu groups use at most N of the GPUs the "
+    "machine shows\n"
     "      (default all; CUDA_VISIBLE_DEVICES chooses which), one GPU per worker, ours\n"
     "      one per GPU at a time with a GPU's share of the cores (results.csv's device\n"
     "      column says which ran where); --threads: the host threads of every group\n"
@@ -220,10 +222,11 @@ std::string csv_text(const std::vector<BenchRecord>& records) {
 int conclude(const BenchConfig& config, const std::vector<BenchRecord>& records,
              const std::string& dir, const std::string& baseline_file,
              const std::vector<GroupSummary>& baseline, const std::string& save_baseline,
-             bool plots) {
+             bool plots, const std::string& side_by_side = {}) {
   const std::vector<GroupSummary> groups = summarize(records);
   std::ostringstream summary;
   summary << "gplan bench " << config.name << " (" << config.kind << ")\n\n";
+  if (!side_by_side.empty()) summary << "notice: " << side_by_side << "\n\n";
   print_summary(summary, groups);
   if (config.problem_set) print_problem_set_summary(summary, records);
   print_stage_summary(summary, records);
@@ -477,7 +480,8 @@ int run_bench(int argc, char** argv) {
   }
   fs::remove(partial);
   std::cerr << "results: " << dir << "\n";
-  return conclude(config, records, dir, baseline, baseline_groups, save, !args.flag("no-plots"));
+  return conclude(config, records, dir, baseline, baseline_groups, save, !args.flag("no-plots"),
+                  side_by_side_notice(groups, jobs));
 }
 
 }  // namespace gplan

@@ -167,6 +167,17 @@ std::string BenchGroup::label() const {
   return scene_name + " " + (table.empty() ? choice.label() : table + " " + checker);
 }
 
+std::string side_by_side_notice(const std::vector<BenchGroup>& groups, int jobs) {
+  const auto together =
+      std::count_if(groups.begin(), groups.end(), [](const BenchGroup& g) { return !g.alone; });
+  if (jobs <= 1 || together < 2) return {};
+  return "--jobs " + std::to_string(jobs) + ": OMPL's single-threaded planners ran up to " +
+         std::to_string(std::min<long>(jobs, together)) +
+         " at a time, each slower than alone (shared cores, caches and clock): their times, "
+         "and ratios against them, are not those of a planner run alone; to compare "
+         "planners, run with --jobs 1";
+}
+
 std::vector<BenchGroup> bench_groups(const BenchConfig& config) {
   std::vector<BenchGroup> alone, together;
   for (std::size_t s = 0; s < config.scenes.size(); ++s) {

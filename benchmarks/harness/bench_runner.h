@@ -58,6 +58,14 @@ struct BenchResources {
   int threads = 0;  // host threads of every group (--threads); 0: as said above
 };
 
+// Where single-threaded groups ran side by side (`jobs` above 1, two or more such
+// groups), a notice saying what that does to their times: each is slower than when run
+// alone, as its users run it (measured on a 16-core H200 host, MotionBenchMaker's first
+// 20 problems per scenario: OMPL's RRTConnect with FCL 1.1x to 1.9x slower 12 at a time
+// than one at a time), so that ratios against them flatter the groups that ran alone.
+// Empty otherwise.
+std::string side_by_side_notice(const std::vector<BenchGroup>& groups, int jobs);
+
 // The CUDA devices this machine shows gplan-bench, counted in a child process (the
 // parent never initialises CUDA: its forked workers could not use it); 0 where none.
 int count_gpus_in_child();

@@ -85,6 +85,11 @@
 #
 # GPU_BUNDLE: the bundle folder (default .gpu). BENCH_SECONDS: gplan-bench runs are
 # stopped (SIGTERM) after this long, keeping their runs done in results.partial.csv.
+# BENCH_JOBS: OMPL's single-threaded planners run this many at a time in plan,
+# regression, ompl-plugin and mbm (gplan-bench --jobs; default 1: each alone, as its
+# users run it). More finish sooner, but each runs slower than alone (on a 16-core H200
+# host, RRTConnect with FCL 1.1x to 1.9x slower 12 at a time), so that their times and
+# ratios against them are not for comparisons.
 set -euo pipefail
 
 usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; }
@@ -141,11 +146,13 @@ export GPLANNER_SHARED_DATA=$data                # tests that read the real PR2 
 export GPLANNER_GPLAN="$run $bin/gplan"          # tests that start gplan
 export GPLANNER_GPLAN_BENCH="$run $bin/gplan-bench"  # the harness's tests that start gplan-bench
 cores=$(nproc)
+jobs=${BENCH_JOBS:-1}
 
 {
   nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>/dev/null || echo "no nvidia-smi"
   lscpu | grep -E "Model name|^CPU\(s\)" || true
   echo "commit $(cat "$bundle/commit" 2>/dev/null || echo unknown)"
+  echo "jobs $jobs (OMPL's single-threaded planners at a time)"
   echo "date $(date -u +%Y-%m-%dT%H:%M:%SZ)"
   echo "tables ${tables[*]}"
 } > "$out/machine.txt"
@@ -219,7 +226,7 @@ for t in "${tables[@]}"; do
       ;;
     plan)
       bench_config benchmarks/config/plan_times.yaml "$out/plan_times" \
-        --jobs $((cores > 5 ? cores - 4 : 1)) || failed+=("$t")
+        --jobs "$jobs" || failed+=("$t")
       ;;
     knn)
       "$run" "$bin/gplanner_knn_bench" > "$out/knn.jsonl" || failed+=("$t")
@@ -240,7 +247,7 @@ for t in "${tables[@]}"; do
       ;;
     regression)
       bench_config benchmarks/config/regression.yaml "$out/regression" \
-        --jobs $((cores > 5 ? cores - 4 : 1)) || failed+=("$t")
+        --jobs "$jobs" || failed+=("$t")
       ;;
     error-time)
       bench_config benchmarks/config/error_time.yaml "$out/error_time" || failed+=("$t")
@@ -257,7 +264,7 @@ for t in "${tables[@]}"; do
       ;;
     ompl-plugin)
       bench_config benchmarks/config/ompl_plugin.yaml "$out/ompl_plugin" \
-        --jobs $((cores > 5 ? cores - 4 : 1)) || failed+=("$t")
+        --jobs "$jobs" || failed+=("$t")
       ;;
     broad-phase)
       # Not through bench_config: here exit 3 is a failure, a method whose pairs differed
@@ -303,7 +310,7 @@ for t in "${tables[@]}"; do
           sed -n '/^planners:/,$p' benchmarks/config/motionbenchmaker_panda.yaml
         fi
       } > "$config"
-      bench_config "$config" "$out/${MBM_OUT:-mbm}" --jobs $((cores > 5 ? cores - 4 : 1)) \
+      bench_config "$config" "$out/${MBM_OUT:-mbm}" --jobs "$jobs" \
         ${MBM_SHARD:+--shard "$MBM_SHARD"} ${MBM_GPUS:+--gpus "$MBM_GPUS"} || failed+=("$t")
       ;;
   esac

@@ -143,6 +143,8 @@ bool LocalPlanner::check_motions(const float* from, const float* to, std::size_t
   const std::size_t cheap_calls_up_to = checker_->cheap_calls_up_to();
   std::size_t live = count;  // motions not found invalid, with samples left
   while (remaining > 0) {
+    if (call_cost == 0 && options_.least_level_samples > 0 && live > 0)
+      per_motion = std::max(per_motion, (options_.least_level_samples + live - 1) / live);
     const bool stepwise = live <= cheap_calls_up_to / per_motion;
     const bool all_at_once = !probe && !stepwise && remaining <= options_.one_batch_samples;
     probe = false;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "gplanner/common/parallel_for.h"
 #include "gplanner/planner/scene/scene.h"
 
 namespace gplanner {
@@ -23,6 +24,13 @@ LocalPlannerOptions sliced(LocalPlannerOptions options, const PlanOptions& plan)
 
 CertifiedMotionOptions sliced(CertifiedMotionOptions options, const PlanOptions& plan) {
   options.batch_seconds = slice_seconds(plan);
+  return options;
+}
+
+LocalPlannerOptions planner_local(LocalPlannerOptions options, const PlanOptions& plan) {
+  options = sliced(options, plan);
+  if (options.least_level_samples == 0)
+    options.least_level_samples = kLevelSamplesPerThread * resolve_thread_count(0);
   return options;
 }
 

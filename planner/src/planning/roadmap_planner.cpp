@@ -41,7 +41,7 @@ RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
       neighbors_(neighbors),
       strategy_(strategy),
       options_(options),
-      local_(scene, checker, sliced(options.local, options)),
+      local_(scene, checker, planner_local(options.local, options)),
       certifier_(scene, checker, sliced(options.certified, options)),
       sampler_(scene.space, local_.metric(), options.sampler),
       roadmap_(scene.space.width()),
@@ -53,7 +53,7 @@ RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
                       std::size_t(1) << 22),
       knn_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 40) {
   fine_.emplace(scene, checker,
-                refined(sliced(options.local, options), options.final_check_refinement));
+                refined(planner_local(options.local, options), options.final_check_refinement));
   neighbors_->reset();
 }
 
@@ -315,7 +315,7 @@ void RoadmapPlanner::set_options(const PlanOptions& options) {
   options_ = options;
   if (certifies_path() != certified) certified_.clear();
   fine_.emplace(scene_, checker_,
-                refined(sliced(options.local, options), options.final_check_refinement));
+                refined(planner_local(options.local, options), options.final_check_refinement));
 }
 
 bool RoadmapPlanner::certifies_path() const {

@@ -68,10 +68,10 @@ TreePlanner::TreePlanner(const Scene& scene, CollisionChecker* checker, const Pl
     : scene_(scene),
       checker_(checker),
       options_(options),
-      local_(scene, checker, sliced(options.local, options)),
+      local_(scene, checker, planner_local(options.local, options)),
       certifier_(scene, checker, sliced(options.certified, options)),
       fine_(scene, checker,
-            refined(sliced(options.local, options), options.final_check_refinement)),
+            refined(planner_local(options.local, options), options.final_check_refinement)),
       sampler_(scene.space, local_.metric(), options.sampler),
       rng_(options.seed),
       trees_{Tree(local_.metric()), Tree(local_.metric())} {

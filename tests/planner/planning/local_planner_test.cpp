@@ -129,6 +129,40 @@ TEST(LocalPlanner, BatchedChecksEqualCheckingEverySampleArticulated) {
   expect_batched_equals_one_by_one("pr2_base_arm.yaml", 0.3);
 }
 
+// Levels of at least least_level_samples (a planner's own checks on the CPU backends, so
+// that every call gives the host's threads work): the same verdicts in fewer calls, each
+// (but a last) of at least that many samples; a few motions left take more samples each.
+TEST(LocalPlanner, LeastLevelSamplesGiveTheSameVerdictsInFewerCalls) {
+  const Scene scene = load("pr2_base_arm.yaml");
+  CpuChecker checker(scene);
+  const int w = scene.space.width();
+  const std::vector<float> pool = testing::sample_configurations(scene, 2000, 17);
+  std::vector<std::uint8_t> verdicts(2000);
+  checker.check(pool.data(), 2000, verdicts.data());
+  std::vector<float> a, b, mid(w);
+  for (std::size_t i = 0; i + 1 < 2000; i += 2) {
+    if (verdicts[i] || verdicts[i + 1]) continue;
+    scene.space.interpolate(&pool[i * w], &pool[(i + 1) * w], 0.3, mid.data());
+    a.insert(a.end(), &pool[i * w], &pool[i * w] + w);
+    b.insert(b.end(), mid.begin(), mid.end());
+  }
+  const std::size_t count = a.size() / w;
+  ASSERT_GT(count, 10u);
+  for (const std::size_t motions : {count, std::size_t(3)}) {  // many motions, and a few
+    SCOPED_TRACE(motions);
+    LocalPlannerOptions leveled;
+    leveled.least_level_samples = 256;
+    LocalPlanner plain(scene, &checker), full_levels(scene, &checker, leveled);
+    std::vector<std::uint8_t> expected(motions), invalid(motions);
+    plain.check_motions(a.data(), b.data(), motions, expected.data());
+    full_levels.check_motions(a.data(), b.data(), motions, invalid.data());
+    EXPECT_EQ(invalid, expected);
+    EXPECT_EQ(invalid, check_one_by_one(scene, &checker, plain, a, b, motions));
+    EXPECT_LT(full_levels.stats().batches, plain.stats().batches);
+    EXPECT_GE(full_levels.stats().samples, 256 * (full_levels.stats().batches - 1));
+  }
+}
+
 // Where calls cost as much as many samples, a first call of the coarsest samples of
 // every motion finds most invalid motions: the same verdicts from fewer samples, in two
 // calls where one would hold them all.

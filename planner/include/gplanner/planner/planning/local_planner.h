@@ -51,6 +51,13 @@ struct LocalPlannerOptions {
   // > 0: batches are also sized from the checker's measured throughput so that one
   // takes about this long (a planner's stop is then seen that often); 0: not by time.
   double batch_seconds = 0;
+  // > 0, where calls cost nothing beyond their samples (the CPU backends): each level of
+  // check_motions checks at least this many samples, more of each motion where few are
+  // left (a shortcut's fine check: a few motions of hundreds of samples), so that every
+  // call gives the host's threads work; the samples past a motion's first collision that
+  // this checks are the price. The verdicts are the same. 0: one sample of each motion,
+  // then two, four, ... (OMPL's order, for one motion at a time from a planner's thread).
+  std::size_t least_level_samples = 0;
 };
 
 struct MotionCheckStats {

@@ -10,6 +10,7 @@
 #include "gplanner/planner/planning/path_shortcutting.h"
 #include "gplanner/planner/planning/scene_metric.h"
 #include "gplanner/planner/scene/scene.h"
+#include "gplanner/planner/scene/straight_line.h"
 #include "stage_timer.h"
 
 namespace gplanner {
@@ -54,13 +55,14 @@ std::size_t rows_per_round(std::size_t rounds_done) {
 // as it saves. The work is estimated per configuration entry: a nanosecond a node
 // distance where the index keeps joint columns (an arm), a nanosecond an entry where it
 // goes row by row (a floating or planar base: more for the rotation's angle), and a
-// nanosecond and a half an entry a row (an arm's row about ten).
+// little over half a nanosecond an entry a row (StraightLine on an arm, the build host's
+// cores: pr2_reach's 15 entries in 8.5 ns; a floating base's rotation costs more).
 constexpr double kThreadedWorkNs = 5e5;
 
 bool threaded_nearest(std::size_t distances, bool by_columns, int width) {
   return distances * (by_columns ? 1.0 : width) > kThreadedWorkNs;
 }
-bool threaded_rows(std::size_t rows, int width) { return rows * 1.5 * width > kThreadedWorkNs; }
+bool threaded_rows(std::size_t rows, int width) { return rows * 0.6 * width > kThreadedWorkNs; }
 
 }  // namespace
 
@@ -200,24 +202,27 @@ void TreePlanner::draw_round(bool first_round, std::vector<Lane>* lanes, std::ve
   parallel_for(
       lanes_, threaded_rows(row_count, width) ? resolve_thread_count(0) : 1,
       [&](std::size_t begin, std::size_t end, int) {
+        StraightLine line;
         for (std::size_t i = begin; i < end; ++i) {
           const Lane& lane = (*lanes)[i];
           if (lane.near < 0) continue;
           const float* near = &trees_[lane.from].nodes[lane.near * width];
           const float* other = &trees_[1 - lane.from].nodes[lane.other * width];
           float* row = &(*rows)[lane.first_row * width];
+          line.reset(space, near, lane.node.data());
           for (int j = 1; j <= lane.extend_samples; ++j, row += width) {
             if (j == lane.extend_samples) {
               std::copy_n(lane.node.data(), width, row);
             } else {
-              space.interpolate(near, lane.node.data(), double(j) / lane.extend_samples, row);
+              line.at(double(j) / lane.extend_samples, row);
             }
           }
+          line.reset(space, other, lane.node.data());
           for (int j = 1; j <= lane.connect_samples; ++j, row += width) {
             if (j == lane.connect_samples) {
               std::copy_n(lane.node.data(), width, row);
             } else {
-              space.interpolate(other, lane.node.data(), double(j) / lane.connect_samples, row);
+              line.at(double(j) / lane.connect_samples, row);
             }
           }
         }

@@ -27,9 +27,7 @@ void check_cuda(cudaError_t status, const char* what) {
 using cuda::DeviceBuffer;
 using cuda::PinnedBuffer;
 
-int blocks_for(std::size_t threads, int block) {
-  return static_cast<int>((threads + block - 1) / block);
-}
+using cuda::blocks_for;
 
 constexpr int kSearchBlock = 128;  // threads per search block: 4 warps, 4 query tiles
 // Fewer query tiles than this (at most 32,768 points) are searched in slices (up to

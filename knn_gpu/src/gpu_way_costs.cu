@@ -28,7 +28,7 @@ constexpr int kBlock = 256;
 // the rows, about as much as reading the flags back).
 constexpr int kFirstGroup = 16, kLargestGroup = 64;
 
-int blocks_for(std::size_t threads) { return static_cast<int>((threads + kBlock - 1) / kBlock); }
+using cuda::blocks_for;
 
 __global__ void start_kernel(std::uint32_t n, std::uint32_t target, double infinity, double* cost,
                              std::uint8_t* active) {
@@ -143,7 +143,7 @@ struct GpuWayCosts::Impl {
                  "upload usability");
     }
     const double infinity = std::numeric_limits<double>::infinity();
-    start_kernel<<<blocks_for(n), kBlock>>>(n, target, infinity, cost.get(), active.get());
+    start_kernel<<<blocks_for(n, kBlock), kBlock>>>(n, target, infinity, cost.get(), active.get());
     check_cuda(cudaGetLastError(), "start kernel");
     std::uint8_t* from = active.get();
     std::uint8_t* to = active_next.get();
@@ -151,8 +151,8 @@ struct GpuWayCosts::Impl {
       if (should_stop && should_stop()) return Outcome::kStopped;
       check_cuda(cudaMemsetAsync(flags.get(), 0, group * sizeof(int)), "clear flags");
       for (int r = 0; r < group; ++r) {
-        round_kernel<<<blocks_for(n), kBlock>>>(n, first.get(), rows.get(), usable.get(),
-                                                cost.get(), from, to, flags.get() + r);
+        round_kernel<<<blocks_for(n, kBlock), kBlock>>>(n, first.get(), rows.get(), usable.get(),
+                                                        cost.get(), from, to, flags.get() + r);
         std::swap(from, to);
       }
       check_cuda(cudaGetLastError(), "round kernel");
@@ -167,8 +167,8 @@ struct GpuWayCosts::Impl {
     }
     int* orphans = flags.get() + kLargestGroup;
     check_cuda(cudaMemsetAsync(orphans, 0, sizeof(int)), "clear orphans");
-    via_kernel<<<blocks_for(n), kBlock>>>(n, target, infinity, first.get(), rows.get(),
-                                          usable.get(), cost.get(), via.get(), orphans);
+    via_kernel<<<blocks_for(n, kBlock), kBlock>>>(n, target, infinity, first.get(), rows.get(),
+                                                  usable.get(), cost.get(), via.get(), orphans);
     check_cuda(cudaGetLastError(), "via kernel");
     check_cuda(cudaMemcpy(h_cost, cost.get(), n * sizeof(double), cudaMemcpyDeviceToHost),
                "download costs");

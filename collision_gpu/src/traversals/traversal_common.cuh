@@ -15,9 +15,7 @@ constexpr unsigned kFullMask = 0xffffffffu;
 
 inline void check_cuda(cudaError_t status, const char* what) { cuda::check(status, "CUDA", what); }
 
-inline int blocks_for(std::size_t n, int threads) {
-  return static_cast<int>((n + threads - 1) / threads);
-}
+using cuda::blocks_for;
 
 // The BV-pair and triangle tests of a batch on the device, added to by every warp
 // through add_counts. Alone on its cache lines: many warps add to it at once.

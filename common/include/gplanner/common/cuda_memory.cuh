@@ -20,6 +20,11 @@ inline void check(cudaError_t status, const char* scope, const char* what) {
   }
 }
 
+// Blocks of `block` threads that cover `threads` threads (a launch's grid size).
+inline int blocks_for(std::size_t threads, int block) {
+  return static_cast<int>((threads + block - 1) / block);
+}
+
 // How a buffer's memory is had: on the device, or page-locked on the host (downloads
 // into it run at full bus speed, where pageable memory goes through the driver's own
 // staging).

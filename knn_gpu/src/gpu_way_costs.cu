@@ -25,8 +25,11 @@ using cuda::PinnedBuffer;
 constexpr int kBlock = 256;
 // Rounds launched before their flags are read back: a first group, then doubling up to
 // the largest (a round that changes nothing after the last change costs one pass over
-// the rows, about as much as reading the flags back).
-constexpr int kFirstGroup = 16, kLargestGroup = 64;
+// the rows, about as much as reading the flags back). The first group is kFirstGroup, or
+// after a computation kAfterLast rounds more than it took: a roadmap's computations take
+// about as many rounds each (lazy PRM's on the piano's roadmaps of 8,000 to 32,000
+// milestones: 17 to 25, where groups of 16 then 32 launched 48).
+constexpr int kFirstGroup = 16, kLargestGroup = 64, kAfterLast = 2;
 
 using cuda::blocks_for;
 
@@ -135,7 +138,6 @@ struct GpuWayCosts::Impl {
   Outcome compute(std::uint32_t target, const std::uint8_t* h_usable, double* h_cost,
                   std::uint32_t* h_via, const std::function<bool()>& should_stop) {
     ++calls;
-    last_rounds = 0;
     if (target >= vertices) throw std::invalid_argument("GPU way costs: target out of range");
     const auto n = static_cast<std::uint32_t>(vertices);
     if (edges > 0) {
@@ -147,7 +149,12 @@ struct GpuWayCosts::Impl {
     check_cuda(cudaGetLastError(), "start kernel");
     std::uint8_t* from = active.get();
     std::uint8_t* to = active_next.get();
-    for (int group = kFirstGroup;; group = std::min(2 * group, kLargestGroup)) {
+    const int first_group =
+        last_rounds > 0
+            ? static_cast<int>(std::min<std::size_t>(last_rounds + kAfterLast, kLargestGroup))
+            : kFirstGroup;
+    last_rounds = 0;
+    for (int group = first_group;; group = std::min(2 * group, kLargestGroup)) {
       if (should_stop && should_stop()) return Outcome::kStopped;
       check_cuda(cudaMemsetAsync(flags.get(), 0, group * sizeof(int)), "clear flags");
       for (int r = 0; r < group; ++r) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include "gplanner/common/parallel_for.h"
 #include "gplanner/planner/planning/plan_result.h"
@@ -118,7 +119,8 @@ std::size_t MilestoneSampler::sample(std::mt19937_64* rng, std::size_t attempts,
   struct Part {
     std::mt19937_64 rng;
     std::size_t attempts;
-    std::vector<float> q;
+    std::size_t first_attempt;
+    std::vector<float> q;  // the bridge test's candidates (else written to `plain_q`)
     std::vector<bool> bridge;
   };
   std::vector<Part> parts;
@@ -128,10 +130,16 @@ std::size_t MilestoneSampler::sample(std::mt19937_64* rng, std::size_t attempts,
       stream_left_ = kStreamAttempts;
     }
     const std::size_t n = std::min(left, stream_left_);
-    parts.push_back({stream_, n, {}, {}});
+    parts.push_back({stream_, n, attempts - left, {}, {}});
     stream_left_ -= n;
     left -= n;
   }
+  // Without the bridge test every attempt is one candidate, drawn in its place in one
+  // buffer (not value-initialised: the parts' threads write all of it, and copying the
+  // parts' own candidates together afterwards took as long as drawing them: 181,000 of
+  // the piano's on the H200's host, 3 ms each).
+  const bool plain = !(options_.bridge_fraction > 0);
+  const std::unique_ptr<float[]> plain_q(plain ? new float[attempts * width] : nullptr);
   // A part costs a quarter to half a millisecond (a rigid body's 1,024 attempts), waking
   // the host's threads tens of microseconds: the threads from two parts on.
   parallel_for(
@@ -139,7 +147,12 @@ std::size_t MilestoneSampler::sample(std::mt19937_64* rng, std::size_t attempts,
       [&](std::size_t begin, std::size_t end, int) {
         for (std::size_t p = begin; p < end; ++p) {
           Part& part = parts[p];
-          part.q.reserve(part.attempts * width * (options_.bridge_fraction > 0 ? 2 : 1));
+          if (plain) {
+            for (std::size_t a = 0; a < part.attempts; ++a)
+              draw(&part.rng, &plain_q[(part.first_attempt + a) * width]);
+            continue;
+          }
+          part.q.reserve(part.attempts * width * 2);
           part.bridge.resize(part.attempts);
           for (std::size_t a = 0; a < part.attempts; ++a)
             part.bridge[a] = attempt(&part.rng, &part.q);
@@ -149,27 +162,39 @@ std::size_t MilestoneSampler::sample(std::mt19937_64* rng, std::size_t attempts,
   if (stream_left_ > 0) stream_ = parts.back().rng;  // the stream as its last part left it
   // Candidates: one per plain attempt, two per bridge (its ends, q1 then q2).
   std::vector<float> q;
-  std::vector<std::size_t> first(attempts);  // per attempt: its first candidate row
-  std::vector<bool> bridge(attempts);
-  std::size_t total = 0;
-  for (const Part& part : parts) total += part.q.size();
-  q.reserve(total);
-  std::size_t i = 0;
-  for (const Part& part : parts) {
-    std::size_t row = q.size() / width;
-    for (std::size_t a = 0; a < part.attempts; ++a, ++i) {
-      bridge[i] = part.bridge[a];
-      first[i] = row;
-      row += bridge[i] ? 2 : 1;
+  std::vector<std::size_t> first;  // per attempt: its first candidate row
+  std::vector<bool> bridge;
+  if (!plain) {
+    first.resize(attempts);
+    bridge.resize(attempts);
+    std::size_t total = 0;
+    for (const Part& part : parts) total += part.q.size();
+    q.reserve(total);
+    std::size_t i = 0;
+    for (const Part& part : parts) {
+      std::size_t row = q.size() / width;
+      for (std::size_t a = 0; a < part.attempts; ++a, ++i) {
+        bridge[i] = part.bridge[a];
+        first[i] = row;
+        row += bridge[i] ? 2 : 1;
+      }
+      q.insert(q.end(), part.q.begin(), part.q.end());
     }
-    q.insert(q.end(), part.q.begin(), part.q.end());
   }
+  const float* candidate = plain ? plain_q.get() : q.data();
   times->sampling += seconds_since(started);
-  const std::size_t candidates = q.size() / width;
+  const std::size_t candidates = plain ? attempts : q.size() / width;
   std::vector<std::uint8_t> verdicts(candidates);
   started = Clock::now();
-  checker->check(q.data(), candidates, verdicts.data());
+  checker->check(candidate, candidates, verdicts.data());
   times->state_checks += seconds_since(started);
+  if (plain) {
+    started = Clock::now();
+    for (std::size_t i = 0; i < attempts; ++i)
+      if (!verdicts[i]) found->insert(found->end(), &plain_q[i * width], &plain_q[(i + 1) * width]);
+    times->sampling += seconds_since(started);
+    return candidates;
+  }
 
   // Midpoints of the bridges whose ends both collide, in one more batch.
   started = Clock::now();

@@ -201,41 +201,71 @@ bool RoadmapPlanner::connect(PlanResult* result) {
     knn_last_seconds_ = seconds_since(started);
     knn_last_points_ = n;
     knn_batch_.record(static_cast<std::size_t>((end - first) * cost), knn_last_seconds_);
-    // The edges' lengths on all cores, then the edges themselves in order.
-    std::vector<float> lengths(nearest.size());
-    parallel_for(
-        end - first, resolve_thread_count(0),
-        [&](std::size_t begin, std::size_t stop, int) {
-          for (std::size_t i = begin; i < stop; ++i) {
-            for (int j = 0; j < k && nearest[i * k + j] >= 0; ++j) {
-              lengths[i * k + j] = configuration_distance(metric, roadmap_.vertex(first + i),
-                                                          roadmap_.vertex(nearest[i * k + j]));
-            }
-          }
-        },
-        512);
     auto lists = [&](std::size_t u, std::size_t x, int within) {  // x among u's first nearest
       const int* row = &nearest[(u - first) * k];
       return std::find(row, row + within, static_cast<int>(x)) != row + within;
     };
-    // The new milestones' edges in order, all at once where none may exist already (the
-    // usual case: every new milestone's edges are new but those its nearest made).
-    const bool all_fresh = first >= fresh && first == call_first;
+    // Whether v's j-th nearest u makes a new edge among new milestones: not v itself, not
+    // listed before in v's row, and not made already by a new milestone before v that
+    // lists v.
+    auto makes_edge = [&](std::size_t v, int j) {
+      const auto u = static_cast<std::size_t>(nearest[(v - first) * k + j]);
+      return u != v && !lists(v, u, j) && !(u >= first && u < v && lists(u, v, k));
+    };
+    auto length_of = [&](std::size_t i, int j) {
+      return configuration_distance(metric, roadmap_.vertex(first + i),
+                                    roadmap_.vertex(nearest[i * k + j]));
+    };
+    const int threads = resolve_thread_count(0);
+    std::vector<float> lengths(nearest.size());
     std::vector<RoadmapEdge> appended;
-    if (all_fresh) appended.reserve((end - first) * k);
-    for (std::size_t v = first; v < end; ++v) {
-      for (int j = 0; j < k; ++j) {
-        const int w = nearest[(v - first) * k + j];
-        if (w < 0) break;
-        const auto a = static_cast<std::uint32_t>(v), b = static_cast<std::uint32_t>(w);
-        const float length = lengths[(v - first) * k + j];
-        const auto u = static_cast<std::size_t>(w);
-        if (v < fresh || (u >= call_first && u < first)) {
-          roadmap_.add_edge(a, b, length);  // may exist: looked for
-        } else if (u != v && !lists(v, u, j) && !(u >= first && u < v && lists(u, v, k))) {
-          if (all_fresh) {
-            appended.push_back({a, b, length, EdgeState::kUnknown});
-          } else {
+    if (first >= fresh && first == call_first) {
+      // The usual case: the new milestones' edges are all new (none may exist already).
+      // Which entries make edges, and their lengths, on all cores (each entry's test
+      // reads `nearest` alone); then the edges in order, all at once. (The piano's last
+      // round, 16,000 new milestones, on the H200's host: 6.6 ms with the choice on one
+      // thread.)
+      std::vector<std::uint8_t> makes(nearest.size(), 0);
+      parallel_for(
+          end - first, threads,
+          [&](std::size_t begin, std::size_t stop, int) {
+            for (std::size_t i = begin; i < stop; ++i) {
+              for (int j = 0; j < k && nearest[i * k + j] >= 0; ++j) {
+                if (!makes_edge(first + i, j)) continue;
+                makes[i * k + j] = 1;
+                lengths[i * k + j] = length_of(i, j);
+              }
+            }
+          },
+          512);
+      appended.reserve((end - first) * k);
+      for (std::size_t i = 0; i < makes.size(); ++i) {
+        if (!makes[i]) continue;
+        appended.push_back({static_cast<std::uint32_t>(first + i / k),
+                            static_cast<std::uint32_t>(nearest[i]), lengths[i],
+                            EdgeState::kUnknown});
+      }
+    } else {
+      // The edges' lengths on all cores, then the edges themselves in order, looked for
+      // where they may exist.
+      parallel_for(
+          end - first, threads,
+          [&](std::size_t begin, std::size_t stop, int) {
+            for (std::size_t i = begin; i < stop; ++i)
+              for (int j = 0; j < k && nearest[i * k + j] >= 0; ++j)
+                lengths[i * k + j] = length_of(i, j);
+          },
+          512);
+      for (std::size_t v = first; v < end; ++v) {
+        for (int j = 0; j < k; ++j) {
+          const int w = nearest[(v - first) * k + j];
+          if (w < 0) break;
+          const auto a = static_cast<std::uint32_t>(v), b = static_cast<std::uint32_t>(w);
+          const float length = lengths[(v - first) * k + j];
+          const auto u = static_cast<std::size_t>(w);
+          if (v < fresh || (u >= call_first && u < first)) {
+            roadmap_.add_edge(a, b, length);  // may exist: looked for
+          } else if (makes_edge(v, j)) {
             roadmap_.append_edge(a, b, length);
           }
         }

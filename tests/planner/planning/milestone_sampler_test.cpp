@@ -1,7 +1,8 @@
 // MilestoneSampler: the milestones depend on the seed and the order of the attempts
 // alone, not on how the attempts are split into calls (the roadmap planner sizes its
-// calls by time) nor on the streams being drawn on several threads; every milestone is
-// free, and the bridge test's lie in the gap between two walls.
+// calls by time) nor on the streams being drawn on several threads; without the bridge
+// test they are the free ones among the draws; every milestone is free, and the bridge
+// test's lie in the gap between two walls.
 
 #include "gplanner/planner/planning/milestone_sampler.h"
 
@@ -75,6 +76,38 @@ TEST(MilestoneSampler, TheSameMilestonesWhateverTheCallsAndThreads) {
   PlanTimes times;
   other.sample(&rng, 5 * kStream + 300, s.checker.get(), &found, &times);
   EXPECT_NE(found, one_call);
+}
+
+// Without the bridge test (each attempt drawn straight into the batch): the milestones
+// are the free ones among the draws, stream by stream, each stream's generator seeded by
+// one draw of the caller's; the same whatever the calls.
+TEST(MilestoneSampler, WithoutBridgesTheMilestonesAreTheFreeDraws) {
+  Sampling s;
+  SamplerOptions o;
+  o.rotation_spread = 0.3;
+  constexpr std::size_t kStream = MilestoneSampler::kStreamAttempts;
+  const std::size_t attempts = 3 * kStream + 100;
+  const std::vector<float> one_call = s.milestones({attempts}, o);
+  EXPECT_EQ(s.milestones({1, kStream + 5, 2 * kStream - 7, 101}, o), one_call);
+  MilestoneSampler sampler(s.scene->space, make_metric(s.scene->space, s.scene->planner), o);
+  sampler.set_endpoints(s.scene->start.data(), s.scene->goal.data());
+  const int width = s.scene->space.width();
+  std::mt19937_64 rng(7), stream;
+  std::vector<float> q(width), expected;
+  std::size_t colliding = 0;
+  for (std::size_t a = 0; a < attempts; ++a) {
+    if (a % kStream == 0) stream.seed(rng());
+    sampler.draw(&stream, q.data());
+    std::uint8_t verdict = 0;
+    s.checker->check(q.data(), 1, &verdict);
+    if (verdict) {
+      ++colliding;
+    } else {
+      expected.insert(expected.end(), q.begin(), q.end());
+    }
+  }
+  EXPECT_GT(colliding, 0u);  // the walls take some: the test could tell a missed check
+  EXPECT_EQ(one_call, expected);
 }
 
 TEST(MilestoneSampler, EveryMilestoneIsFreeBridgesToo) {

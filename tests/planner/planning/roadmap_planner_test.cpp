@@ -8,6 +8,7 @@
 
 #include <random>
 #include <set>
+#include <tuple>
 #include <utility>
 
 #include "gplanner/planner/checkers/cpu_checker.h"
@@ -250,6 +251,51 @@ TEST(RoadmapPlanner, EachRoundJoinsItsMilestonesToTheirNearestOnce) {
   }
   EXPECT_EQ(first, roadmap.vertex_count());
   EXPECT_EQ(made, expected);
+}
+
+// The CPU finder asked as the GPU's is (every new milestone of a round in one call) or
+// one new milestone a call.
+class AskedAllOrOne : public NeighborFinder {
+ public:
+  AskedAllOrOne(NeighborFinder* finder, bool all) : finder_(finder), all_(all) {}
+  std::string device() const override { return finder_->device(); }
+  bool nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end, int k,
+                  std::vector<int>* indices) override {
+    return finder_->nearest_of(points, n, first, end, k, indices);
+  }
+  bool searches_all_points() const override { return all_; }
+  double query_cost(std::size_t) const override { return all_ ? 1 : 1e30; }
+
+ private:
+  NeighborFinder* finder_;
+  bool all_;
+};
+
+// A round's new milestones are joined alike whether all come in one call (their edges
+// chosen on all threads, then appended at once) or one a call (each edge to a new
+// milestone of an earlier call looked for): the same edges in the same order, with the
+// same lengths and states, and the same plan.
+TEST(RoadmapPlanner, JoinsNewMilestonesAlikeAllAtOnceOrOneAtATime) {
+  Planning p("pr2_base_arm.yaml");
+  PlanOptions options = plan_options(p.scene);
+  options.seed = 3;
+  options.milestones = 100;
+  AskedAllOrOne all(p.neighbors.get(), true), one(p.neighbors.get(), false);
+  RoadmapPlanner at_once(p.scene, &p.checker, &all, RoadmapStrategy::kLazyPrm, options);
+  const PlanResult a = at_once.solve(p.scene.start.data(), p.scene.goal.data());
+  RoadmapPlanner singly(p.scene, &p.checker, &one, RoadmapStrategy::kLazyPrm, options);
+  const PlanResult b = singly.solve(p.scene.start.data(), p.scene.goal.data());
+  ASSERT_TRUE(a.solved && b.solved);
+  ASSERT_GE(a.rounds, 3);
+  const std::vector<RoadmapEdge>& ea = at_once.roadmap().edges();
+  const std::vector<RoadmapEdge>& eb = singly.roadmap().edges();
+  ASSERT_EQ(ea.size(), eb.size());
+  for (std::size_t e = 0; e < ea.size(); ++e) {
+    ASSERT_EQ(std::make_tuple(ea[e].a, ea[e].b, ea[e].length, ea[e].state),
+              std::make_tuple(eb[e].a, eb[e].b, eb[e].length, eb[e].state))
+        << "edge " << e;
+  }
+  EXPECT_EQ(a.path, b.path);
 }
 
 // The GPU finder with its GPU for the costs to the goal hidden: the host computes them.

@@ -95,7 +95,7 @@ class CollisionChecker;
 // scenario on the cpu backend planned 1.08x to 1.32x sooner at 4 than at 10 (medians;
 // cage within its spread), each path within 1 % of its length. On the GPU a round's fine
 // check rides in a call made anyway (MotionBenchMaker, 4 against 10: the medians within
-// their spread, one path 13 % longer), and the refinement stays.
+// their spread, one path 13 % longer), and the refinement stays. (Since 0.5.5.)
 inline constexpr int kCertifiedFineRefinement = 4;
 int fine_refinement(const PlanOptions& plan, const CollisionChecker& checker);
 

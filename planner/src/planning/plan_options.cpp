@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "gplanner/common/parallel_for.h"
-#include "gplanner/planner/checkers/collision_checker.h"
 #include "gplanner/planner/scene/scene.h"
 
 namespace gplanner {
@@ -39,13 +38,6 @@ LocalPlannerOptions refined(LocalPlannerOptions options, int refinement) {
   options.resolution_fraction /= refinement;
   options.max_displacement /= refinement;
   return options;
-}
-
-int fine_refinement(const PlanOptions& plan, const CollisionChecker& checker) {
-  const bool certified = plan.certify_path || plan.edges == EdgeChecks::kCertified;
-  if (certified && checker.configurations_per_call_cost() == 0)
-    return std::min(plan.final_check_refinement, kCertifiedFineRefinement);
-  return plan.final_check_refinement;
 }
 
 PlanOptions plan_options(const Scene& scene) {

@@ -53,7 +53,7 @@ RoadmapPlanner::RoadmapPlanner(const Scene& scene, CollisionChecker* checker,
                       std::size_t(1) << 22),
       knn_batch_(slice_seconds(options), 1024, 64, std::size_t(1) << 40) {
   fine_.emplace(scene, checker,
-                refined(planner_local(options.local, options), fine_refinement(options, *checker)));
+                refined(planner_local(options.local, options), options.final_check_refinement));
   neighbors_->reset();
 }
 
@@ -344,9 +344,8 @@ void RoadmapPlanner::set_options(const PlanOptions& options) {
   const bool certified = certifies_path();
   options_ = options;
   if (certifies_path() != certified) certified_.clear();
-  fine_.emplace(
-      scene_, checker_,
-      refined(planner_local(options.local, options), fine_refinement(options, *checker_)));
+  fine_.emplace(scene_, checker_,
+                refined(planner_local(options.local, options), options.final_check_refinement));
 }
 
 bool RoadmapPlanner::certifies_path() const {

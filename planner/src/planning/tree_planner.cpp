@@ -73,7 +73,7 @@ TreePlanner::TreePlanner(const Scene& scene, CollisionChecker* checker, const Pl
       local_(scene, checker, planner_local(options.local, options)),
       certifier_(scene, checker, sliced(options.certified, options)),
       fine_(scene, checker,
-            refined(planner_local(options.local, options), fine_refinement(options, *checker))),
+            refined(planner_local(options.local, options), options.final_check_refinement)),
       sampler_(scene.space, local_.metric(), options.sampler),
       rng_(options.seed),
       trees_{Tree(local_.metric()), Tree(local_.metric())} {

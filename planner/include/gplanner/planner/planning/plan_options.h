@@ -44,9 +44,7 @@ struct PlanOptions {
   int shortcut_candidates = 256;
   // The found path is re-checked at the edge resolution divided by this (1: not at all)
   // before it is returned; a path that fails sends the search back to the roadmap.
-  // (Only when certify_path is false.) The shortcut rounds check their shortcuts at this
-  // refinement too (fine_refinement: on the CPU backends at most 4 where the path is
-  // certified).
+  // (Only when certify_path is false.)
   int final_check_refinement = 10;
   EdgeChecks edges = EdgeChecks::kSampled;
   // The found path is certified free (CertifiedMotions) before it is returned; an edge
@@ -85,19 +83,6 @@ inline constexpr std::size_t kLevelSamplesPerThread = 8;
 LocalPlannerOptions planner_local(LocalPlannerOptions options, const PlanOptions& plan);
 // `options` at `refinement` times the resolution (the fine re-check's).
 LocalPlannerOptions refined(LocalPlannerOptions options, int refinement);
-class CollisionChecker;
-// The refinement of a planner's fine checks on `checker` (the shortcut rounds', and the
-// found path's re-check where it is not certified): plan.final_check_refinement, but at
-// most kCertifiedFineRefinement where the path is certified (certify_path, or certified
-// edges) and the checker's calls cost their work alone (the CPU backends). The fine check
-// then only keeps out the shortcuts that the certification would refuse, and its samples
-// cost their work: on a 16-core H200 host, MotionBenchMaker's first 8 problems of each
-// scenario on the cpu backend planned 1.08x to 1.32x sooner at 4 than at 10 (medians;
-// cage within its spread), each path within 1 % of its length. On the GPU a round's fine
-// check rides in a call made anyway (MotionBenchMaker, 4 against 10: the medians within
-// their spread, one path 13 % longer), and the refinement stays. (Since 0.5.5.)
-inline constexpr int kCertifiedFineRefinement = 4;
-int fine_refinement(const PlanOptions& plan, const CollisionChecker& checker);
 
 struct Scene;
 // The options a scene's planner settings give (seed, time limit, roadmap, shortcut,

@@ -99,13 +99,14 @@ long long Roadmap::find_edge(std::uint32_t a, std::uint32_t b) const {
 double roadmap_bytes(std::size_t milestones, int width, int neighbors) {
   // Per vertex: its row, its adjacency list (add_edge's first room of 32 entries, or
   // about 2k), and the searches' costs, parents and marks (GoalDistances and A*) and
-  // GoalDistances' row start; per edge (up to k a vertex): the edge, and its length and
-  // neighbour index while made, and GoalDistances' two row entries and usability.
+  // GoalDistances' row start; per edge (up to k a vertex): the edge, and its length,
+  // neighbour index and whether it is new while made, and GoalDistances' two row entries
+  // and usability.
   const double per_vertex = width * sizeof(float) + sizeof(std::vector<std::uint32_t>) +
                             std::max(32.0, 2.0 * neighbors) * sizeof(std::uint32_t) + 32.0 +
                             sizeof(std::size_t);
-  const double per_edge = sizeof(RoadmapEdge) + sizeof(float) + sizeof(int) + 2 * sizeof(WayEdge) +
-                          sizeof(std::uint8_t);
+  const double per_edge = sizeof(RoadmapEdge) + sizeof(float) + sizeof(int) + sizeof(std::uint8_t) +
+                          2 * sizeof(WayEdge) + sizeof(std::uint8_t);
   return static_cast<double>(milestones) * (per_vertex + neighbors * per_edge);
 }
 

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "gplanner/collision_gpu/geometry/obb.h"
@@ -199,6 +201,29 @@ TEST(TriangleDistance, FloatEdgeAxisRejectionIsConservative) {
   // The planes leave far - by_planes_far; the edge axes take most of those.
   EXPECT_GT(rejected_far - by_planes_far, 0.6 * (far - by_planes_far))
       << "planes " << by_planes_far << ", planes and edges " << rejected_far << " of " << far;
+}
+
+// The leaf test's inline max and min are std::fmax and std::fmin on every pair of special
+// and ordinary values (a NaN gives the other argument, two give NaN), so that inlining
+// them changes no verdict; only a zero's sign may differ, which no caller can see.
+template <typename T>
+void same_as_fmax_and_fmin() {
+  const T nan = std::numeric_limits<T>::quiet_NaN(), inf = std::numeric_limits<T>::infinity();
+  const T values[] = {nan, -inf, T(-2.5), T(-1e-30), T(-0.0), T(0.0), T(1e-30), T(3), inf};
+  const auto same = [](T got, T want) {
+    return (std::isnan(got) && std::isnan(want)) || (got == want);  // 0 == -0
+  };
+  for (const T a : values) {
+    for (const T b : values) {
+      EXPECT_TRUE(same(max_number(a, b), std::fmax(a, b))) << a << ", " << b;
+      EXPECT_TRUE(same(min_number(a, b), std::fmin(a, b))) << a << ", " << b;
+    }
+  }
+}
+
+TEST(TriangleDistance, InlineMaxAndMinAreFmaxAndFmin) {
+  same_as_fmax_and_fmin<float>();
+  same_as_fmax_and_fmin<double>();
 }
 
 TEST(TriangleDistance, SegmentDistancesOnKnownCases) {

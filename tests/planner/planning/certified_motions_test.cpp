@@ -35,9 +35,12 @@ std::vector<float> at(const Scene& scene, double x, double y) {
 }
 
 // A backend by name; "costly": the cpu backend with calls that cost as much as 8,192
-// configurations, as the GPU's do (rounds of one call, segments cut into quarters).
+// configurations, as the GPU's do (rounds of one call, segments cut into quarters);
+// "costly16": as much as 16, fewer than a round's ends (the failing ends' plain checks
+// then go into the next round's call).
 std::unique_ptr<CollisionChecker> make_checker(const Scene& scene, const std::string& name) {
   if (name == "costly") return std::make_unique<testing::CostlyCallChecker>(scene, 8192);
+  if (name == "costly16") return std::make_unique<testing::CostlyCallChecker>(scene, 16);
   std::unique_ptr<CollisionChecker> checker = make_collision_checker(scene, name);
   EXPECT_EQ(checker->backend(), name);
   return checker;
@@ -103,7 +106,8 @@ TEST_P(CertifiedMotionsOn, CertifyMotionsBesideTheWallWithMillimetresToSpare) {
   EXPECT_EQ(invalid[0], 1);
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, CertifiedMotionsOn, ::testing::Values("cpu", "fcl", "costly", "gpu"),
+INSTANTIATE_TEST_SUITE_P(Backends, CertifiedMotionsOn,
+                         ::testing::Values("cpu", "fcl", "costly", "costly16", "gpu"),
                          [](const auto& info) {
                            return info.param == "gpu" ? std::string("Gpu") : info.param;
                          });
@@ -163,6 +167,50 @@ INSTANTIATE_TEST_SUITE_P(Backends, CertifiedMotionsAgree, ::testing::Values("cpu
                          [](const auto& info) {
                            return info.param == "gpu" ? std::string("Gpu") : info.param;
                          });
+
+// Where a round's ends outnumber a call's cost, the failing ends' plain checks wait for
+// the next round's call: the verdicts are those of plain checks in the same call, motion
+// for motion, on motions between uniform configurations (many ends colliding) and short
+// ones between free configurations; and the calls are fewer.
+TEST(CertifiedMotions, DeferredPlainChecksGiveTheSameVerdicts) {
+  const Scene scene = load_scene(testing::project_root() + "/scenes/piano.yaml");
+  const std::size_t width = scene.space.width();
+  const std::vector<float> q = testing::sample_configurations(scene, 1000, 5);
+  std::vector<std::uint8_t> colliding(1000);
+  testing::CostlyCallChecker reference(scene, 8192), deferring(scene, 16);
+  reference.check(q.data(), 1000, colliding.data());
+  std::vector<float> from, to, free;
+  for (std::size_t i = 0; i < 1000; ++i)
+    if (!colliding[i]) free.insert(free.end(), &q[i * width], &q[(i + 1) * width]);
+  for (std::size_t m = 0; m < 40; ++m) {  // uniform to uniform
+    from.insert(from.end(), &q[(2 * m) * width], &q[(2 * m + 1) * width]);
+    to.insert(to.end(), &q[(2 * m + 1) * width], &q[(2 * m + 2) * width]);
+  }
+  ASSERT_GE(free.size() / width, 40u);
+  std::vector<float> near(width);
+  for (std::size_t m = 0; m < 20; ++m) {  // free, a tenth of the way to another
+    from.insert(from.end(), &free[(2 * m) * width], &free[(2 * m + 1) * width]);
+    scene.space.interpolate(&free[(2 * m) * width], &free[(2 * m + 1) * width], 0.1, near.data());
+    to.insert(to.end(), near.begin(), near.end());
+  }
+  const std::size_t count = from.size() / width;
+  std::vector<std::uint8_t> want(count), got(count);
+  CertifiedMotions in_one_call(scene, &reference), deferred(scene, &deferring);
+  ASSERT_TRUE(in_one_call.check_motions(from.data(), to.data(), count, want.data()));
+  ASSERT_TRUE(deferred.check_motions(from.data(), to.data(), count, got.data()));
+  std::size_t invalid = 0;
+  for (std::size_t m = 0; m < count; ++m) {
+    EXPECT_EQ(got[m], want[m]) << "motion " << m;
+    invalid += want[m];
+  }
+  // Both kinds present, or the comparison says little.
+  EXPECT_GT(invalid, 20u);
+  EXPECT_LT(invalid, count);
+  // Plain checks of all ends in the round's call (cost 8,192) against those of the failing
+  // ends in the next round's (cost 16): no call of their own either way.
+  EXPECT_EQ(in_one_call.stats().batches, in_one_call.stats().rounds);
+  EXPECT_LE(deferred.stats().batches, deferred.stats().rounds + 1);
+}
 
 }  // namespace
 }  // namespace gplanner

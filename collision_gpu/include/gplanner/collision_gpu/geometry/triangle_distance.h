@@ -11,10 +11,10 @@ namespace gplanner::geometry {
 
 // std::fmax and std::fmin as the standard defines them (a NaN gives the other argument;
 // two NaNs, NaN), inline on the host: GCC calls libm for them unless NaNs are assumed
-// away (-ffinite-math-only), and the leaf test's edge axes make up to ninety a triangle pair
-// (perf, a piano plan on the cpu backend: 6 % of its samples in them and their stubs).
-// The device keeps CUDA's (an instruction).
-// A zero's sign may differ from libm's; the callers only compare and subtract them.
+// away (-ffinite-math-only), and the leaf test's edge axes make up to ninety a triangle
+// pair (perf, a piano plan on the cpu backend: 6 % of its samples in them and their
+// stubs). The device keeps CUDA's (an instruction). A zero's sign may differ from libm's;
+// the callers only compare and subtract them.
 template <typename T>
 GP_HD T max_number(T a, T b) {
 #if defined(__CUDA_ARCH__)

@@ -17,10 +17,10 @@
 // clearances are half as large, so that segments near obstacles are refined and those far
 // from them are not; an end that collides makes the motion invalid. Where the checker's
 // calls have a fixed cost (the GPU's), a round is one call and segments are cut into
-// quarters instead: the plain checks go in the same call as the clearances where they add
-// fewer rows than a call costs, else those of the failing ends in the next round's call. A segment
-// that would be halved below `finest_step` makes its motion invalid too: certified answers are
-// conservative.
+// quarters instead: the plain checks go in the same call as the clearances where they
+// add fewer rows than a call costs, else those of the failing ends in the next round's
+// call. A segment that would be halved below `finest_step` makes its motion invalid too:
+// certified answers are conservative.
 //
 // With the tolerance band: the clearances are added to the checker's own leaf threshold,
 // which stays there to absorb float rounding (docs/design.md, "The tolerance band");

@@ -203,7 +203,7 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
       stats.checks += n;
       ++stats.batches;
     }
-    plain_check_deferred(&verdicts[deferred_first]);
+    plain_check_deferred(verdicts.data() + deferred_first);  // none deferred: the end
     // Ends that failed: do they collide themselves?
     std::vector<std::size_t> failed;
     for (std::size_t e = 0; e < n_ends; ++e)

@@ -30,11 +30,12 @@ constexpr int kBlock = 256;
 // about as many rounds each (lazy PRM's on the piano's roadmaps of 8,000 to 32,000
 // milestones: 17 to 25, where groups of 16 then 32 launched 48).
 constexpr int kFirstGroup = 16, kLargestGroup = 64, kAfterLast = 2;
-// Threads sharing a vertex's row in a round (round_kernel). A thread a vertex took 40 to
-// 60 us a round on the piano's roadmaps, its loads one after another. Measured (H200, the
-// four rigid bodies' shipped scenes, seeds 1 to 5 twice, in turn; the same costs and
-// paths): 4 threads 1.04x, 8 1.05x, 16 1.07x sooner plans (geometric means), the search
-// stage 11 % shorter at 16. Lazy PRM's rows hold about 24 entries.
+// Threads sharing a vertex's row in a round (round_kernel). A thread a vertex took 30 to
+// 70 us a round on the piano's roadmaps (host timers around the usability's upload and
+// the rounds), its loads one after another. Measured (H200, the four rigid bodies'
+// shipped scenes, seeds 1 to 5 twice, in turn; the same costs and paths): 4 threads
+// 1.04x, 8 1.05x, 16 1.07x sooner plans (geometric means), the search stage 11 % shorter
+// at 16. Lazy PRM's rows hold about 24 entries.
 constexpr int kLanesPerVertex = 16;
 
 using cuda::blocks_for;

@@ -102,6 +102,13 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
   const int cuts = call_cost > 0 ? 4 : 2;
   std::vector<float> ends, clearances;
   std::vector<std::uint8_t> verdicts, plain;
+  // Checks n configurations without clearances in a call of their own, into `plain`.
+  const auto check_plain = [&](const float* q, std::size_t n) {
+    plain.resize(n);
+    checker_->check(q, n, plain.data());
+    stats.checks += n;
+    ++stats.batches;
+  };
   // Where calls cost and a round's ends outnumber a call's cost, the plain checks of the
   // ends that failed go into the next round's call rather than a call of their own (on
   // MotionBenchMaker's Panda, a path's first round of 2,000 to 3,000 ends, a few dozen
@@ -220,10 +227,7 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
       std::vector<float> failed_ends(failed.size() * width);
       for (std::size_t f = 0; f < failed.size(); ++f)
         std::copy_n(&ends[failed[f] * width], width, &failed_ends[f * width]);
-      plain.resize(failed.size());
-      checker_->check(failed_ends.data(), failed.size(), plain.data());
-      stats.checks += failed.size();
-      ++stats.batches;
+      check_plain(failed_ends.data(), failed.size());
       for (std::size_t f = 0; f < failed.size(); ++f) verdicts[failed[f]] = plain[f] ? 2 : 1;
     }
     // 0: kept the clearance; 1: free but closer; 2: colliding. Certified segments leave;
@@ -257,10 +261,7 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
   // its motion's segments open, so none should be left; should one be, it still counts).
   drop_deferred_of_invalid();
   if (!deferred_motion.empty()) {
-    plain.resize(deferred_motion.size());
-    checker_->check(deferred.data(), deferred_motion.size(), plain.data());
-    stats.checks += deferred_motion.size();
-    ++stats.batches;
+    check_plain(deferred.data(), deferred_motion.size());
     plain_check_deferred(plain.data());
   }
   const std::lock_guard<std::mutex> lock(stats_mutex_);

@@ -98,8 +98,11 @@ struct GpuNearestNeighbors::Impl {
     }
   }
 
-  NeighborTable all_nearest(const ConfigurationMetric& metric, const float* h_points,
-                            std::size_t count, int k, float radius) {
+  // Checks the arguments, then enqueues the search of `count` points on the stream (the
+  // upload to the merged indices and distances on the device); the caller then enqueues
+  // its downloads and calls finish(). Returns false for no points (nothing enqueued).
+  bool enqueue_search(const ConfigurationMetric& metric, const float* h_points, std::size_t count,
+                      int k, float radius) {
     detail::check_knn_arguments(metric, count, k, radius);
     if (k > kMaxGpuNeighbors) {
       throw std::invalid_argument("GPU k-NN: k = " + std::to_string(k) + " exceeds the limit " +
@@ -119,10 +122,7 @@ struct GpuNearestNeighbors::Impl {
           " floats); use all_nearest_neighbors_cpu()");
     }
     stats = {};
-    NeighborTable table;
-    table.k = k;
-    table.rows = count;
-    if (count == 0) return table;
+    if (count == 0) return false;
 
     const int n = static_cast<int>(count);
     const int tiles = (n + detail::kTile - 1) / detail::kTile;
@@ -144,8 +144,6 @@ struct GpuNearestNeighbors::Impl {
       part_indices.reserve(static_cast<std::size_t>(slices) * rows * k);
       part_distances.reserve(static_cast<std::size_t>(slices) * rows * k);
     }
-    h_indices.reserve(count * k);
-    h_distances.reserve(count * k);
     std::size_t sort_bytes = 0;
     check_cuda(cub::DeviceRadixSort::SortPairs(nullptr, sort_bytes, keys.get(), sorted_keys.get(),
                                                order.get(), sorted_order.get(), n, 0, 63, stream),
@@ -208,13 +206,14 @@ struct GpuNearestNeighbors::Impl {
       check_cuda(cudaGetLastError(), "merge kernel");
     }
     check_cuda(cudaEventRecord(search_stop, stream), "event");
+    stats.tiles = tiles;
+    stats.slices = slices;
+    return true;
+  }
 
-    check_cuda(cudaMemcpyAsync(h_indices.get(), indices.get(), count * k * sizeof(int),
-                               cudaMemcpyDeviceToHost, stream),
-               "download indices");
-    check_cuda(cudaMemcpyAsync(h_distances.get(), distances.get(), count * k * sizeof(float),
-                               cudaMemcpyDeviceToHost, stream),
-               "download distances");
+  // Downloads the counters after the caller's downloads, waits for the stream, and
+  // records the call's times and counts in `stats`.
+  void finish() {
     check_cuda(cudaMemcpyAsync(h_counters.get(), counters.get(), 3 * sizeof(unsigned long long),
                                cudaMemcpyDeviceToHost, stream),
                "download counters");
@@ -226,14 +225,47 @@ struct GpuNearestNeighbors::Impl {
     check_cuda(cudaEventElapsedTime(&search_ms, search_start, search_stop), "event");
     stats.milliseconds = total_ms;
     stats.search_milliseconds = search_ms;
-    stats.tiles = tiles;
-    stats.slices = slices;
     stats.tiles_visited = h_counters.get()[0];
     stats.candidate_pairs = h_counters.get()[1];
     stats.distance_evaluations = h_counters.get()[2];
+  }
+
+  NeighborTable all_nearest(const ConfigurationMetric& metric, const float* h_points,
+                            std::size_t count, int k, float radius) {
+    NeighborTable table;
+    table.k = k;
+    table.rows = count;
+    if (!enqueue_search(metric, h_points, count, k, radius)) return table;
+    h_indices.reserve(count * k);
+    h_distances.reserve(count * k);
+    check_cuda(cudaMemcpyAsync(h_indices.get(), indices.get(), count * k * sizeof(int),
+                               cudaMemcpyDeviceToHost, stream),
+               "download indices");
+    check_cuda(cudaMemcpyAsync(h_distances.get(), distances.get(), count * k * sizeof(float),
+                               cudaMemcpyDeviceToHost, stream),
+               "download distances");
+    finish();
     table.indices.assign(h_indices.get(), h_indices.get() + count * k);
     table.distances.assign(h_distances.get(), h_distances.get() + count * k);
     return table;
+  }
+
+  void nearest_rows(const ConfigurationMetric& metric, const float* h_points, std::size_t count,
+                    int k, std::size_t first, std::size_t end, int* h_rows, float radius) {
+    if (first > end || end > count) {
+      throw std::invalid_argument("GPU k-NN: rows [" + std::to_string(first) + ", " +
+                                  std::to_string(end) + ") are not among the " +
+                                  std::to_string(count) + " points");
+    }
+    if (!enqueue_search(metric, h_points, count, k, radius)) return;  // no points
+    // Into the caller's memory directly (pageable: the driver stages it): no pinned
+    // buffer to grow as the roadmap does, and no copy after.
+    if (first < end) {
+      check_cuda(cudaMemcpyAsync(h_rows, indices.get() + first * k, (end - first) * k * sizeof(int),
+                                 cudaMemcpyDeviceToHost, stream),
+                 "download indices");
+    }
+    finish();
   }
 };
 
@@ -263,6 +295,13 @@ NeighborTable GpuNearestNeighbors::all_nearest(const ConfigurationMetric& metric
                                                float radius) {
   const GpuDeviceScope scope(impl_->device);
   return impl_->all_nearest(metric, points, n, k, radius);
+}
+
+void GpuNearestNeighbors::nearest_rows(const ConfigurationMetric& metric, const float* points,
+                                       std::size_t n, int k, std::size_t first, std::size_t end,
+                                       int* indices, float radius) {
+  const GpuDeviceScope scope(impl_->device);
+  impl_->nearest_rows(metric, points, n, k, first, end, indices, radius);
 }
 
 const GpuKnnStats& GpuNearestNeighbors::last_stats() const { return impl_->stats; }

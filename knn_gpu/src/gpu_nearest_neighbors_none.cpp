@@ -27,6 +27,12 @@ NeighborTable GpuNearestNeighbors::all_nearest(const ConfigurationMetric&, const
       "GPU k-NN: gplanner was built without CUDA; use all_nearest_neighbors_cpu()");
 }
 
+void GpuNearestNeighbors::nearest_rows(const ConfigurationMetric&, const float*, std::size_t, int,
+                                       std::size_t, std::size_t, int*, float) {
+  throw std::runtime_error(
+      "GPU k-NN: gplanner was built without CUDA; use all_nearest_neighbors_cpu()");
+}
+
 const GpuKnnStats& GpuNearestNeighbors::last_stats() const { return impl_->stats; }
 
 std::string GpuNearestNeighbors::device_name() const { return ""; }

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gplanner/knn_gpu/nearest_neighbors.h"
@@ -152,6 +153,36 @@ TEST(KnnGpu, PadsSmallSetsAndReusesBuffers) {
       for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(table.count(i), static_cast<int>(n) - 1);
     }
   }
+}
+
+// nearest_rows() is all_nearest()'s search with only some rows brought back: those rows
+// equal the table's exactly, in one slice and in several, alone or after other calls.
+TEST(KnnGpu, RowsAreThoseOfTheWholeTable) {
+  REQUIRE_GPU();
+  GpuNearestNeighbors gpu;
+  const ConfigurationMetric m = floating_metric(1);
+  for (const std::size_t n : {std::size_t(1500), std::size_t(40000), std::size_t(70)}) {
+    const std::vector<float> points = random_configurations(m, n, 111 + n);
+    const int k = 15;
+    const NeighborTable table = gpu.all_nearest(m, points.data(), n, k);
+    ASSERT_TRUE(same_up_to_ties(all_nearest_neighbors_cpu(m, points.data(), n, k), table));
+    for (const auto& [first, end] :
+         {std::pair<std::size_t, std::size_t>{0, n}, {n / 2, n}, {n / 3, n / 3 + 7}, {n, n}}) {
+      std::vector<int> rows((end - first) * k, -2);
+      gpu.nearest_rows(m, points.data(), n, k, first, end, rows.data());
+      EXPECT_GT(gpu.last_stats().candidate_pairs, 0u) << "the GPU did no work";
+      const std::vector<int> expected(table.indices.begin() + first * k,
+                                      table.indices.begin() + end * k);
+      EXPECT_EQ(rows, expected) << n << " points, rows " << first << " to " << end;
+    }
+    int unused = 0;
+    EXPECT_THROW(gpu.nearest_rows(m, points.data(), n, k, n / 2, n + 1, &unused),
+                 std::invalid_argument);
+    EXPECT_THROW(gpu.nearest_rows(m, points.data(), n, k, n / 2 + 1, n / 2, &unused),
+                 std::invalid_argument);
+    EXPECT_EQ(unused, 0);
+  }
+  gpu.nearest_rows(m, nullptr, 0, 4, 0, 0, nullptr);  // no points: nothing to do
 }
 
 }  // namespace

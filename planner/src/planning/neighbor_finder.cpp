@@ -198,14 +198,16 @@ class GpuNeighborFinder : public NeighborFinder {
       for (std::size_t i = 0; i < kWarmPoints; ++i)
         std::copy_n(std::array<float, 4>{1, 0, 0, 0}.data(), 4, &points[i * width + 3]);
     }
-    gpu_.all_nearest(metric_, points.data(), kWarmPoints, kWarmNeighbors);
+    std::vector<int> rows(kWarmPoints * kWarmNeighbors);
+    gpu_.nearest_rows(metric_, points.data(), kWarmPoints, kWarmNeighbors, 0, kWarmPoints,
+                      rows.data());
   }
   std::string device() const override { return "gpu"; }
   bool nearest_of(const float* points, std::size_t n, std::size_t first, std::size_t end, int k,
                   std::vector<int>* indices) override {
     ++device_calls_;
-    const NeighborTable table = gpu_.all_nearest(metric_, points, n, k);
-    indices->assign(table.indices.begin() + first * k, table.indices.begin() + end * k);
+    indices->resize((end - first) * k);
+    gpu_.nearest_rows(metric_, points, n, k, first, end, indices->data());
     return true;
   }
   bool searches_all_points() const override { return true; }

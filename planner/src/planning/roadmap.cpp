@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "gplanner/common/parallel_for.h"
+#include "gplanner/common/prefault.h"
 #include "gplanner/knn_gpu/gpu_way_costs.h"
 
 namespace gplanner {
@@ -43,6 +44,12 @@ std::uint32_t Roadmap::append_edge(std::uint32_t a, std::uint32_t b, float lengt
     adjacency_[v].push_back(e);
   }
   return e;
+}
+
+void Roadmap::reserve_edges(std::size_t edges) {
+  edges_.reserve(edges);
+  prefault_for_writing(edges_.data() + edges_.size(),
+                       (edges_.capacity() - edges_.size()) * sizeof(RoadmapEdge));
 }
 
 void Roadmap::reserve_vertices(std::size_t vertices) {

@@ -57,7 +57,7 @@ NeighborTable nearest_neighbors_cpu(const ConfigurationMetric& metric, const flo
 // says why in *reason (if given).
 bool gpu_nearest_neighbors_available(std::string* reason = nullptr);
 
-// What the last GpuNearestNeighbors::all_nearest() did.
+// What the last GpuNearestNeighbors::all_nearest() or nearest_rows() did.
 struct GpuKnnStats {
   double milliseconds = 0;                 // GPU time of the whole call: upload to download
   double search_milliseconds = 0;          // the search kernel alone
@@ -90,6 +90,13 @@ class GpuNearestNeighbors {
   NeighborTable all_nearest(const ConfigurationMetric& metric, const float* points, std::size_t n,
                             int k, float radius = kUnboundedRadius);
 
+  // Rows [first, end) of all_nearest()'s indices alone, written to `indices` (host, shape
+  // [end - first, k]): the same search, with only those rows and no distances brought
+  // back (a roadmap's round needs its new milestones' neighbours among all). Throws as
+  // all_nearest() does, and std::invalid_argument unless first <= end <= n. (Since 0.5.7.)
+  void nearest_rows(const ConfigurationMetric& metric, const float* points, std::size_t n, int k,
+                    std::size_t first, std::size_t end, int* indices,
+                    float radius = kUnboundedRadius);
   const GpuKnnStats& last_stats() const;
   std::string device_name() const;
 

@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "a_star.h"
 #include "gplanner/common/parallel_for.h"
 
 namespace gplanner {
@@ -234,6 +235,31 @@ std::size_t GoalDistances::remove_edges(const Roadmap& roadmap,
   stopped_ = !settle(rows, usable_, should_stop_, &open, &cost_, &via_);
   for (const std::uint32_t v : found) affected_[v] = 0;
   return found.size();
+}
+
+void GoalDistances::set_unusable(const Roadmap& roadmap, const std::vector<std::uint32_t>& edges) {
+  if (!rows_) return;
+  for (const std::uint32_t e : edges) {
+    const RoadmapEdge& edge = roadmap.edge(e);
+    if (usable(edge, valid_edges_only_)) continue;
+    usable_[e] = 0;
+    if (via_[edge.a] == e || via_[edge.b] == e) exact_ = false;
+  }
+}
+
+GraphPath GoalDistances::shortest_path(std::uint32_t start, std::size_t max_expanded,
+                                       const std::function<bool()>& should_stop) const {
+  if (!rows_) return {};
+  const Rows& rows = *rows_;
+  return detail::a_star(
+      rows.vertices, start, goal_,
+      [&](std::uint32_t v, const auto& visit) {
+        for (std::size_t i = rows.first[v]; i < rows.first[v + 1]; ++i) {
+          const Rows::Entry& entry = rows.entries[i];
+          if (usable_[entry.edge]) visit(entry.edge, entry.other, entry.length);
+        }
+      },
+      [&](std::uint32_t v) { return cost_[v]; }, max_expanded, should_stop);
 }
 
 }  // namespace gplanner

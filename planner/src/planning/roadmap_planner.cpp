@@ -314,7 +314,7 @@ std::vector<std::uint32_t> RoadmapPlanner::unknown_edges(const GraphPath& path) 
   return unknown;
 }
 
-void RoadmapPlanner::add_next_paths(const GoalDistances& to_goal, std::uint32_t s, std::uint32_t g,
+void RoadmapPlanner::add_next_paths(const GoalDistances& to_goal, std::uint32_t s,
                                     std::size_t shortest_vertices,
                                     std::vector<std::uint32_t>* batch, PlanResult* result) {
   // The batch's edges are set aside (marked invalid) while the next path is searched,
@@ -353,8 +353,7 @@ void RoadmapPlanner::add_next_paths(const GoalDistances& to_goal, std::uint32_t 
   bool exact = aside.remove_edges(roadmap_, *batch, max_repair) <= max_repair;
   for (int p = 1; p < options_.lazy_batch_paths; ++p) {
     if (aside.stopped()) break;
-    const GraphPath next = shortest_path(roadmap_, aside.cost(), s, g, /*valid_edges_only=*/false,
-                                         max_expanded, stop_);
+    const GraphPath next = aside.shortest_path(s, max_expanded, stop_);
     ++result->searches;
     if (next.vertices.empty()) break;
     const std::vector<std::uint32_t> unknown = unknown_edges(next);
@@ -365,7 +364,11 @@ void RoadmapPlanner::add_next_paths(const GoalDistances& to_goal, std::uint32_t 
       set_edge_state(e, EdgeState::kInvalid);
       batch->push_back(e);
     }
-    if (exact) exact = aside.remove_edges(roadmap_, unknown, max_repair) <= max_repair;
+    if (exact) {
+      exact = aside.remove_edges(roadmap_, unknown, max_repair) <= max_repair;
+    } else {
+      aside.set_unusable(roadmap_, unknown);  // for its searches; its costs as they are
+    }
   }
   for (const std::uint32_t e : *batch) set_edge_state(e, EdgeState::kUnknown);
 }
@@ -512,8 +515,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       GraphPath path;
       {
         StageTimer timer(&result.times.search, &result.gpu_calls.search, *checker_, neighbors_);
-        path = shortest_path(roadmap_, to_root.cost(), from, root, /*valid_edges_only=*/!lazy,
-                             ~std::size_t(0), stop_);
+        path = to_root.shortest_path(from, ~std::size_t(0), stop_);
         ++result.searches;
       }
       if (path.vertices.empty()) break;
@@ -525,7 +527,7 @@ PlanResult RoadmapPlanner::solve(const float* start, const float* goal) {
       if (!unknown.empty()) {
         {
           StageTimer timer(&result.times.search, &result.gpu_calls.search, *checker_, neighbors_);
-          add_next_paths(to_root, from, root, path.vertices.size(), &unknown, &result);
+          add_next_paths(to_root, from, path.vertices.size(), &unknown, &result);
         }
         check_edges(unknown, &result);
         remove_invalid(unknown);

@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "gplanner/planner/planning/graph_search.h"
 
@@ -194,6 +196,91 @@ TEST(GoalDistances, ACopyRemovesItsOwnEdges) {
   GoalDistances fresh;
   fresh.compute(roadmap, 1, false);
   expect_same_costs(kept.cost(), fresh.cost());
+}
+
+void expect_same_search(const GraphPath& own, const GraphPath& roadmaps, const char* what) {
+  EXPECT_EQ(own.vertices, roadmaps.vertices) << what;
+  EXPECT_EQ(own.edges, roadmaps.edges) << what;
+  EXPECT_EQ(own.length, roadmaps.length) << what;
+  EXPECT_EQ(own.expanded, roadmaps.expanded) << what;
+  EXPECT_EQ(own.gave_up, roadmaps.gave_up) << what;
+}
+
+// GoalDistances::shortest_path, over its own rows and usability, against graph_search's
+// over the roadmap's states, as lazy PRM's batches use it: edges removed exactly, then
+// past a bound (the costs stale), then only set unusable; searches whole and cut short.
+// Each search matches vertex for vertex and expansion for expansion.
+TEST(GoalDistances, ItsSearchesAreTheRoadmapsSearches) {
+  std::mt19937 rng(11);
+  std::size_t searches = 0, stale = 0, gave_up = 0;
+  for (int trial = 0; trial < 9; ++trial) {
+    Roadmap roadmap = radius_roadmap(&rng, 400, 0.12f);
+    const bool valid_only = trial % 3 == 2;
+    GoalDistances kept;
+    EXPECT_TRUE(kept.shortest_path(0).vertices.empty());  // nothing computed yet
+    kept.compute(roadmap, 1, valid_only);
+    std::uniform_int_distribution<std::size_t> pick_edge(0, roadmap.edge_count() - 1);
+    for (int batch = 0; batch < 60; ++batch) {
+      const std::size_t bound = batch % 4 == 3 ? 40 : ~std::size_t(0);
+      const GraphPath own = kept.shortest_path(0, bound);
+      const GraphPath roadmaps = shortest_path(roadmap, kept.cost(), 0, 1, valid_only, bound);
+      expect_same_search(own, roadmaps, kept.exact() ? "exact" : "stale");
+      ++searches;
+      stale += !kept.exact();
+      gave_up += own.gave_up;
+      if (HasFailure()) return;
+      if (own.vertices.empty() && !own.gave_up) break;
+      std::vector<std::uint32_t> removed = {static_cast<std::uint32_t>(pick_edge(rng)),
+                                            static_cast<std::uint32_t>(pick_edge(rng))};
+      if (!own.edges.empty()) removed.push_back(own.edges[own.edges.size() / 2]);
+      for (const std::uint32_t e : removed) roadmap.edge(e).state = EdgeState::kInvalid;
+      if (!kept.exact()) {
+        kept.set_unusable(roadmap, removed);
+      } else if (kept.remove_edges(roadmap, removed, batch < 20 ? ~std::size_t(0) - 1 : 3) > 3 &&
+                 batch >= 20) {
+        EXPECT_FALSE(kept.exact());
+      }
+    }
+  }
+  EXPECT_GT(searches, 300u);
+  EXPECT_GT(stale, 50u);  // searches led by stale costs were compared too
+  EXPECT_GT(gave_up, 10u);
+}
+
+// set_unusable changes no cost; the costs stay exact while no way to the goal used the
+// edges.
+TEST(GoalDistances, SetUnusableKeepsTheCosts) {
+  std::mt19937 rng(12);
+  Roadmap roadmap = radius_roadmap(&rng, 300, 0.15f);
+  GoalDistances kept;
+  kept.compute(roadmap, 1, false);
+  const std::vector<double> before = kept.cost();
+  const GraphPath path = kept.shortest_path(0);
+  ASSERT_FALSE(path.edges.empty());
+  // An edge on no vertex's way: still exact.
+  std::uint32_t off_ways = 0;
+  for (std::uint32_t e = 0; e < roadmap.edge_count(); ++e) {
+    GoalDistances copy = kept;
+    roadmap.edge(e).state = EdgeState::kInvalid;
+    copy.set_unusable(roadmap, {e});
+    roadmap.edge(e).state = EdgeState::kUnknown;
+    if (copy.exact()) {
+      off_ways = e;
+      break;
+    }
+  }
+  roadmap.edge(off_ways).state = EdgeState::kInvalid;
+  kept.set_unusable(roadmap, {off_ways});
+  EXPECT_TRUE(kept.exact());
+  // The shortest path's first edge: no longer exact, the same costs, and the search
+  // goes around it.
+  roadmap.edge(path.edges[0]).state = EdgeState::kInvalid;
+  kept.set_unusable(roadmap, {path.edges[0]});
+  EXPECT_FALSE(kept.exact());
+  EXPECT_EQ(kept.cost(), before);
+  const GraphPath around = kept.shortest_path(0);
+  EXPECT_EQ(std::count(around.edges.begin(), around.edges.end(), path.edges[0]), 0);
+  expect_same_search(around, shortest_path(roadmap, kept.cost(), 0, 1, false), "around");
 }
 
 }  // namespace

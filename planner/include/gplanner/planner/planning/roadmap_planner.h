@@ -85,11 +85,10 @@ class RoadmapPlanner {
   std::vector<std::uint32_t> unknown_edges(const GraphPath& path) const;
   // Lazy PRM: adds to `batch` (the shortest path's unknown edges) those of the next
   // shortest paths, up to options_.lazy_batch_paths paths in all, searched from `s` to
-  // `g` (to_goal: every vertex's cost to `g`); shortest_vertices: the shortest path's
-  // vertex count.
-  void add_next_paths(const GoalDistances& to_goal, std::uint32_t s, std::uint32_t g,
-                      std::size_t shortest_vertices, std::vector<std::uint32_t>* batch,
-                      PlanResult* result);
+  // to_goal's goal (to_goal: every vertex's cost to it); shortest_vertices: the shortest
+  // path's vertex count.
+  void add_next_paths(const GoalDistances& to_goal, std::uint32_t s, std::size_t shortest_vertices,
+                      std::vector<std::uint32_t>* batch, PlanResult* result);
   // Why planning must stop now ("stopped": should_stop; "time limit"), or null.
   const char* why_stop() const;
   // Whether it must, the reason then put in result->stop_reason.

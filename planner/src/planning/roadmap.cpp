@@ -62,28 +62,52 @@ void Roadmap::reserve_vertices(std::size_t vertices) {
 
 std::size_t Roadmap::append_edges(const RoadmapEdge* edges, std::size_t count) {
   const std::size_t first = edges_.size();
-  edges_.reserve(first + count);
-  for (std::size_t i = 0; i < count; ++i) {
-    RoadmapEdge edge = edges[i];
-    if (edge.a > edge.b) std::swap(edge.a, edge.b);
-    edges_.push_back(edge);
-  }
-  // Each part of the vertices (a range) on a thread of its own: it goes through all the
-  // new edges in order and appends those at its vertices, so that every list stays in
-  // index order.
-  const std::size_t n = adjacency_.size();
+  // Copied in one run (into the room reserve_edges made), then each put in order (a < b)
+  // on the host's threads.
+  edges_.insert(edges_.end(), edges, edges + count);
   const std::size_t parts = count < kEdgesPerThread ? 1 : resolve_thread_count(0);
+  parallel_for(
+      count, static_cast<int>(parts),
+      [&](std::size_t begin, std::size_t end, int) {
+        for (std::size_t i = first + begin; i < first + end; ++i) {
+          RoadmapEdge& edge = edges_[i];
+          if (edge.a > edge.b) std::swap(edge.a, edge.b);
+        }
+      },
+      kEdgesPerThread);
+  // Each part of the vertices (a range) on a thread of its own: it goes through all the
+  // new edges in order and gathers those at its vertices by vertex (a counting sort,
+  // which keeps each vertex's edges in index order), then appends them vertex after
+  // vertex. (Appending them as they came, to lists all over the roadmap, missed the
+  // caches twice an edge: 6.5 ms for a round of 32,000 new milestones on the H200's host.)
+  const std::size_t n = adjacency_.size();
   parallel_for(
       parts, static_cast<int>(parts),
       [&](std::size_t begin, std::size_t end, int) {
+        std::vector<std::uint32_t> starts, gathered;
         for (std::size_t part = begin; part < end; ++part) {
           const std::size_t lo = part * n / parts, hi = (part + 1) * n / parts;
+          auto in_part = [&](std::uint32_t v) { return v >= lo && v < hi; };
+          starts.assign(hi - lo + 1, 0);
           for (std::size_t e = first; e < first + count; ++e) {
-            for (const std::uint32_t v : {edges_[e].a, edges_[e].b}) {
-              if (v < lo || v >= hi) continue;
-              if (adjacency_[v].empty()) adjacency_[v].reserve(kFirstEdgeRoom);
-              adjacency_[v].push_back(static_cast<std::uint32_t>(e));
-            }
+            for (const std::uint32_t v : {edges_[e].a, edges_[e].b})
+              if (in_part(v)) ++starts[v - lo + 1];
+          }
+          for (std::size_t v = 1; v <= hi - lo; ++v) starts[v] += starts[v - 1];
+          gathered.resize(starts[hi - lo]);
+          for (std::size_t e = first; e < first + count; ++e) {
+            for (const std::uint32_t v : {edges_[e].a, edges_[e].b})
+              if (in_part(v)) gathered[starts[v - lo]++] = static_cast<std::uint32_t>(e);
+          }
+          // starts[v - lo] is now where v's run ends (and v + 1's begins).
+          std::size_t run = 0;
+          for (std::size_t v = lo; v < hi; ++v) {
+            const std::size_t stop = starts[v - lo];
+            if (stop == run) continue;
+            std::vector<std::uint32_t>& list = adjacency_[v];
+            if (list.empty()) list.reserve(std::max(kFirstEdgeRoom, stop - run));
+            list.insert(list.end(), gathered.begin() + run, gathered.begin() + stop);
+            run = stop;
           }
         }
       },

@@ -46,12 +46,6 @@ std::uint32_t Roadmap::append_edge(std::uint32_t a, std::uint32_t b, float lengt
   return e;
 }
 
-void Roadmap::reserve_edges(std::size_t edges) {
-  edges_.reserve(edges);
-  prefault_for_writing(edges_.data() + edges_.size(),
-                       (edges_.capacity() - edges_.size()) * sizeof(RoadmapEdge));
-}
-
 void Roadmap::reserve_vertices(std::size_t vertices) {
   try {
     vertices_.reserve(vertices * static_cast<std::size_t>(width_));
@@ -62,8 +56,12 @@ void Roadmap::reserve_vertices(std::size_t vertices) {
 
 std::size_t Roadmap::append_edges(const RoadmapEdge* edges, std::size_t count) {
   const std::size_t first = edges_.size();
-  // Copied in one run (into the room reserve_edges made), then each put in order (a < b)
-  // on the host's threads.
+  // Copied in one run, into the room reserve_edges made with its pages mapped on the
+  // host's threads first (only the room these take: a round's room for millions of
+  // milestones, mapped all at once, took longer than a time limit's slice, and longer to
+  // give back at the exit), then each put in order (a < b) on the host's threads.
+  if (edges_.capacity() - first >= count)
+    prefault_for_writing(edges_.data() + first, count * sizeof(RoadmapEdge));
   edges_.insert(edges_.end(), edges, edges + count);
   const std::size_t parts = count < kEdgesPerThread ? 1 : resolve_thread_count(0);
   parallel_for(

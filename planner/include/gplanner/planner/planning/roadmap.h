@@ -53,12 +53,12 @@ class Roadmap {
                             EdgeState state = EdgeState::kUnknown);
   // Appends `count` edges that the roadmap does not have (nor any twice), each a != b, in
   // their order, their ends' lists filled on the host's threads; returns the first one's
-  // index. (Since 0.5.3.)
+  // index. (Since 0.5.3; since 0.5.7 the room they take, where reserve_edges made it, is
+  // mapped on the host's threads first: prefault_for_writing.)
   std::size_t append_edges(const RoadmapEdge* edges, std::size_t count);
   long long find_edge(std::uint32_t a, std::uint32_t b) const;
-  // Room for this many edges in all, its pages mapped on the host's threads (since 0.5.7:
-  // prefault_for_writing), so that appending a round's edges does not fault page by page.
-  void reserve_edges(std::size_t edges);
+  // Room for this many edges in all.
+  void reserve_edges(std::size_t edges) { edges_.reserve(edges); }
   // Room for this many vertices in all (since 0.5.3); none made where the allocation
   // fails (the roadmap then grows as vertices come).
   void reserve_vertices(std::size_t vertices);

@@ -326,7 +326,7 @@ void RoadmapPlanner::add_next_paths(const GoalDistances& to_goal, std::uint32_t 
   // times the shortest path's vertices (at least kMinSpeculation): with the batch set
   // aside the ways to the goal may have to go around much of the roadmap, which costs
   // more than the checker call it saves. (8 and 256, down from 32 and 1,024 in 0.5.7: on
-  // the rigid bodies, seeds 1 to 5 on the H200's host, the search took 20 to 40 % less
+  // the rigid bodies, seeds 1 to 5 on the H200's host, the search took 22 to 41 % less
   // time, the plans 1.12x less, every path the same; 4 and 128 searched more again.)
   constexpr std::size_t kSpeculation = 8, kMinSpeculation = 256;
   if (options_.lazy_batch_paths <= 1) return;

@@ -8,11 +8,11 @@
 #include <memory>
 #include <new>
 #include <queue>
-#include <type_traits>
 #include <utility>
 
 #include "a_star.h"
 #include "gplanner/common/parallel_for.h"
+#include "uninitialized_array.h"
 
 namespace gplanner {
 
@@ -29,10 +29,7 @@ struct GoalDistances::Rows {
   // Not value-initialised: the threads that fill it write every entry, each touching its
   // part of the memory first (zeroing 12 MB on one thread first took longer than filling
   // it on all: the piano's roadmap of 32,000 milestones).
-  struct Free {
-    void operator()(Entry* p) const { ::operator delete(p); }
-  };
-  std::unique_ptr<Entry[], Free> entries;
+  detail::UninitializedArray<Entry> entries;
 };
 
 namespace {
@@ -62,10 +59,7 @@ void GoalDistances::read_rows(const Roadmap& roadmap) {
   rows->first.assign(rows->vertices + 1, 0);
   for (std::size_t v = 0; v < rows->vertices; ++v)
     rows->first[v + 1] = rows->first[v] + roadmap.edges_at(v).size();
-  static_assert(std::is_trivially_copyable_v<Rows::Entry> &&
-                std::is_trivially_destructible_v<Rows::Entry>);
-  rows->entries.reset(static_cast<Rows::Entry*>(
-      ::operator new(std::max<std::size_t>(1, rows->first.back()) * sizeof(Rows::Entry))));
+  rows->entries = detail::uninitialized_array<Rows::Entry>(rows->first.back());
   // Each row as edges_at lists the vertex's edges (in index order), on the host's threads
   // (a roadmap of 32,000 milestones took 2 to 4 ms a round on one). The reads of the
   // edges miss the caches: all threads, in parts of kRowGrain vertices (in parts of

@@ -5,7 +5,6 @@
 #include <memory>
 #include <new>
 #include <numeric>
-#include <type_traits>
 
 #include "gplanner/common/parallel_for.h"
 #include "gplanner/common/physical_memory.h"
@@ -14,6 +13,7 @@
 #include "gplanner/planner/planning/path_shortcutting.h"
 #include "gplanner/planner/scene/scene.h"
 #include "stage_timer.h"
+#include "uninitialized_array.h"
 
 namespace gplanner {
 namespace {
@@ -257,12 +257,8 @@ bool RoadmapPlanner::connect(PlanResult* result) {
       });
       std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
       const std::size_t total = offsets.back();
-      struct Free {
-        void operator()(RoadmapEdge* p) const { ::operator delete(p); }
-      };
-      static_assert(std::is_trivially_destructible_v<RoadmapEdge>);
-      const std::unique_ptr<RoadmapEdge[], Free> edges(static_cast<RoadmapEdge*>(
-          ::operator new(std::max<std::size_t>(total, 1) * sizeof(RoadmapEdge))));
+      const detail::UninitializedArray<RoadmapEdge> edges =
+          detail::uninitialized_array<RoadmapEdge>(total);
       for_each_block([&](std::size_t b, std::size_t begin, std::size_t stop) {
         std::size_t e = offsets[b];
         for (std::size_t i = begin; i < stop; ++i) {

@@ -117,7 +117,9 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
   // invalid, when its plain verdict comes. Each deferred end: its configuration, motion.
   std::vector<float> deferred;
   std::vector<std::size_t> deferred_motion;
-  const auto plain_check_deferred = [&](const std::uint8_t* collides) {
+  // The deferred ends' plain verdicts (`collides`, in their order) taken: a colliding
+  // end's motion is invalid; none is deferred after.
+  const auto take_deferred_verdicts = [&](const std::uint8_t* collides) {
     for (std::size_t d = 0; d < deferred_motion.size(); ++d)
       if (collides[d]) invalid[deferred_motion[d]] = 1;
     deferred.clear();
@@ -210,7 +212,7 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
       stats.checks += n;
       ++stats.batches;
     }
-    plain_check_deferred(verdicts.data() + deferred_first);  // none deferred: the end
+    take_deferred_verdicts(verdicts.data() + deferred_first);  // none deferred: the end
     // Ends that failed: do they collide themselves?
     std::vector<std::size_t> failed;
     for (std::size_t e = 0; e < n_ends; ++e)
@@ -262,7 +264,7 @@ bool CertifiedMotions::check_motions(const float* from, const float* to, std::si
   drop_deferred_of_invalid();
   if (!deferred_motion.empty()) {
     check_plain(deferred.data(), deferred_motion.size());
-    plain_check_deferred(plain.data());
+    take_deferred_verdicts(plain.data());
   }
   const std::lock_guard<std::mutex> lock(stats_mutex_);
   stats_.motions += stats.motions;

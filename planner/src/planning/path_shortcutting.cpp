@@ -29,12 +29,35 @@ struct Proposal {
   // Every shortcut of the path (no random choice): a round that leaves the path as it
   // was would propose and find the same again.
   bool all_pairs = false;
+  // Shortcuts that are what the path already is (midpoint_chain): free by the path's
+  // own checks, checked at neither resolution. `checked`: the others, in order.
+  std::vector<std::uint8_t> known;
+  std::vector<std::size_t> checked;
 };
+
+// Whether the waypoints strictly between i and j are nested midpoints of the motion from
+// i to j: j - i a power of two, waypoint (i + j) / 2 exactly the midpoint of i and j as
+// ConfigurationSpace::interpolate gives it, and each half so in turn (what the rounds'
+// refinement put between waypoints the path still has). The motion from i to j then
+// passes through the configurations of the path between them, up to rounding: a
+// shortcut that is the path itself. scratch: room for one configuration.
+bool midpoint_chain(const ConfigurationSpace& space, const std::vector<float>& path, std::size_t i,
+                    std::size_t j, float* scratch) {
+  const std::size_t span = j - i;
+  if (span < 2 || (span & (span - 1)) != 0) return false;
+  const int width = space.width();
+  const std::size_t h = i + span / 2;
+  space.interpolate(&path[i * width], &path[j * width], 0.5, scratch);
+  if (!std::equal(scratch, scratch + width, &path[h * width])) return false;
+  return span == 2 ||
+         (midpoint_chain(space, path, i, h, scratch) && midpoint_chain(space, path, h, j, scratch));
+}
 
 // Shortcuts (i, j), j > i + 1, on `path`: all of them when few, else `candidates` at
 // random.
-Proposal propose(const std::vector<float>& path, int width, int candidates, LocalPlanner* local,
-                 LocalPlanner* fine, bool certified, std::mt19937_64* rng) {
+Proposal propose(const ConfigurationSpace& space, const std::vector<float>& path, int candidates,
+                 LocalPlanner* local, LocalPlanner* fine, bool certified, std::mt19937_64* rng) {
+  const int width = space.width();
   Proposal p;
   const std::size_t m = path.size() / width;
   const std::size_t all = (m - 1) * (m - 2) / 2;
@@ -57,13 +80,22 @@ Proposal propose(const std::vector<float>& path, int width, int candidates, Loca
   p.to.resize(n * width);
   p.segments.resize(n);
   p.fine_segments.resize(n);
+  p.known.assign(n, 0);
   // Samples at the coarse resolution, and at the fine one together with the coarse ones
   // that are not among them.
   std::size_t coarse_samples = 0, at_once_samples = 0;
   std::vector<std::size_t> coarse_not_in_fine;  // shortcuts whose coarse samples fine's miss
+  std::vector<float> scratch(width);
   for (std::size_t k = 0; k < n; ++k) {
     std::copy_n(&path[p.pairs[k].first * width], width, &p.from[k * width]);
     std::copy_n(&path[p.pairs[k].second * width], width, &p.to[k * width]);
+    // Certified, a shortcut is certified itself: the path's motions are not taken for it.
+    if (!certified &&
+        midpoint_chain(space, path, p.pairs[k].first, p.pairs[k].second, scratch.data())) {
+      p.known[k] = 1;
+      continue;
+    }
+    p.checked.push_back(k);
     p.segments[k] = local->segments(&p.from[k * width], &p.to[k * width]);
     p.fine_segments[k] = fine->segments(&p.from[k * width], &p.to[k * width]);
     coarse_samples += p.segments[k] - 1;
@@ -83,10 +115,12 @@ Proposal propose(const std::vector<float>& path, int width, int candidates, Loca
 // first checked at, then the coarse_too ones at the coarse resolution.
 void append_checks(const Proposal& p, int width, std::vector<float>* a, std::vector<float>* b,
                    std::vector<int>* segments) {
-  a->insert(a->end(), p.from.begin(), p.from.end());
-  b->insert(b->end(), p.to.begin(), p.to.end());
   const std::vector<int>& first = p.fine_at_once ? p.fine_segments : p.segments;
-  segments->insert(segments->end(), first.begin(), first.end());
+  for (const std::size_t k : p.checked) {
+    a->insert(a->end(), &p.from[k * width], &p.from[(k + 1) * width]);
+    b->insert(b->end(), &p.to[k * width], &p.to[(k + 1) * width]);
+    segments->push_back(first[k]);
+  }
   for (const std::size_t k : p.coarse_too) {
     a->insert(a->end(), &p.from[k * width], &p.from[(k + 1) * width]);
     b->insert(b->end(), &p.to[k * width], &p.to[(k + 1) * width]);
@@ -96,9 +130,10 @@ void append_checks(const Proposal& p, int width, std::vector<float>* a, std::vec
 
 // Each shortcut's verdict from those of the motions append_checks gave.
 std::vector<std::uint8_t> shortcut_verdicts(const Proposal& p, const std::uint8_t* checks) {
-  std::vector<std::uint8_t> invalid(checks, checks + p.pairs.size());
+  std::vector<std::uint8_t> invalid(p.pairs.size(), 0);
+  for (std::size_t c = 0; c < p.checked.size(); ++c) invalid[p.checked[c]] = checks[c];
   for (std::size_t c = 0; c < p.coarse_too.size(); ++c)
-    if (checks[p.pairs.size() + c]) invalid[p.coarse_too[c]] = 1;
+    if (checks[p.checked.size() + c]) invalid[p.coarse_too[c]] = 1;
   return invalid;
 }
 
@@ -179,7 +214,7 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
       invalid = std::move(ahead_invalid);
       have_ahead = false;
     } else {
-      p = propose(*path, width, candidates, local, fine, certify != nullptr, rng);
+      p = propose(space, *path, candidates, local, fine, certify != nullptr, rng);
       std::vector<float> a, b;
       std::vector<int> segments;
       append_checks(p, width, &a, &b, &segments);
@@ -198,6 +233,8 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
     // shortcuts valid so far; the shortcuts it takes are checked again at the fine
     // resolution, and those failing drop out, until the way holds only certified ones.
     std::vector<std::uint8_t> certified(p.pairs.size(), p.fine_at_once ? 1 : 0);
+    for (std::size_t k = 0; k < p.pairs.size(); ++k)
+      if (p.known[k]) certified[k] = 1;
     std::vector<std::size_t> parent(m, 0), via(m, kNone);
     while (true) {
       std::vector<std::vector<std::size_t>> into(m);  // valid shortcuts ending at j
@@ -241,7 +278,7 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
         if (kept.size() < m || refined) {  // there will be a next round
           const std::vector<float> if_passed = kept_path(space, *path, kept, refined);
           if (if_passed.size() / width >= 3) {
-            next = propose(if_passed, width, candidates, local, fine, false, rng);
+            next = propose(space, if_passed, candidates, local, fine, false, rng);
             append_checks(next, width, &a, &b, &segments);
             with_next = true;
           }

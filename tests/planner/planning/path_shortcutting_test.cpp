@@ -5,7 +5,8 @@
 // once takes one call a round, for the same path. Certified shortcutting certifies the path its
 // rounds give in one certification, and where that fails (a shortcut free at the samples, through
 // an obstacle between them) runs the rounds again with every shortcut certified: the path it
-// returns is certified either way.
+// returns is certified either way. A shortcut that is the path itself (over the midpoints the
+// rounds put in) is not checked.
 
 #include "gplanner/planner/planning/path_shortcutting.h"
 
@@ -217,6 +218,67 @@ TEST(PathShortcutting, ShortcutsCheckedAtOnceKeepTheirCoarseSamples) {
     std::mt19937_64 rng(1);
     shortcut_path(scene.space, &local, &fine, nullptr, 1, 64, &rng, &shortened);
     EXPECT_EQ(shortened, path) << "call cost " << per_call;
+  }
+}
+
+// A checker that finds every configuration free and counts those it checks; its calls cost
+// `per_call`.
+class CountingFree : public CollisionChecker {
+ public:
+  explicit CountingFree(std::size_t per_call) : per_call_(per_call) {}
+  std::string backend() const override { return "cpu"; }
+  void check(const float*, std::size_t n, std::uint8_t* verdicts) override {
+    std::fill(verdicts, verdicts + n, 0);
+    checked_ += n;
+  }
+  void check_clearances(const float* configurations, std::size_t n, const float*,
+                        std::uint8_t* verdicts) override {
+    check(configurations, n, verdicts);
+  }
+  std::size_t configurations_per_call_cost() const override { return per_call_; }
+  std::size_t cheap_calls_up_to() const override { return 0; }
+  std::size_t checked() const { return checked_; }
+
+ private:
+  std::size_t per_call_;
+  std::size_t checked_ = 0;
+};
+
+TEST(PathShortcutting, ShortcutsThatAreThePathItselfAreNotChecked) {
+  // The flying cube's straight motion from start to goal, with the midpoint a round's
+  // refinement puts in: the one shortcut (start to goal) is the motion the path already
+  // is, no shorter. One round checks no configuration, at either resolution, whatever a
+  // call costs, and leaves the path as it is. A waypoint a little off the midpoint makes
+  // a shortcut that is checked and taken.
+  const Scene scene = flying_cube_scene("");
+  const PlanOptions options = plan_options(scene);
+  LocalPlannerOptions fine_options = options.local;
+  fine_options.resolution_fraction /= options.final_check_refinement;
+  const int width = scene.space.width();
+  const std::vector<float> start = {-1, 0, 0, 1, 0, 0, 0}, goal = {1, 0.5f, 0, 1, 0, 0, 0};
+  std::vector<float> straight = start;
+  straight.insert(straight.end(), goal.begin(), goal.end());
+  std::vector<float> mid(width);
+  scene.space.interpolate(start.data(), goal.data(), 0.5, mid.data());
+  for (const float offset : {0.0f, 1e-3f}) {
+    std::vector<float> path = start;
+    path.insert(path.end(), mid.begin(), mid.end());
+    path[width + 1] += offset;
+    path.insert(path.end(), goal.begin(), goal.end());
+    for (const std::size_t per_call : {std::size_t(0), std::size_t(4096)}) {
+      CountingFree checker(per_call);
+      LocalPlanner local(scene, &checker, options.local), fine(scene, &checker, fine_options);
+      std::vector<float> shortened = path;
+      std::mt19937_64 rng(1);
+      shortcut_path(scene.space, &local, &fine, nullptr, 1, 64, &rng, &shortened);
+      if (offset == 0) {
+        EXPECT_EQ(shortened, path) << "call cost " << per_call;
+        EXPECT_EQ(checker.checked(), 0u) << "call cost " << per_call;
+      } else {
+        EXPECT_EQ(shortened, straight) << "call cost " << per_call;
+        EXPECT_GT(checker.checked(), 0u) << "call cost " << per_call;
+      }
+    }
   }
 }
 

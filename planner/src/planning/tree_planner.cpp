@@ -407,14 +407,14 @@ TreePlanner::PathOutcome TreePlanner::finish_path(const std::vector<float>& path
       to.insert(to.end(), &p[(i + 1) * width], &p[(i + 2) * width]);
     }
   };
-  // Applies the certification's verdicts on the tree path's unchecked edges (from
-  // verdicts[first]); false where one failed (its subtree removed).
-  auto apply = [&](const std::vector<std::uint8_t>& verdicts, std::size_t first) {
+  // Applies the certification's verdicts on the tree path's unchecked edges; false where
+  // one failed (its subtree removed).
+  auto apply = [&](const std::vector<std::uint8_t>& verdicts) {
     bool valid = true;
     for (std::size_t i = 0; i < unchecked.size(); ++i) {
       Tree& tree = trees_[edge_tree[unchecked[i]]];
       const std::int32_t child = edge_child[unchecked[i]];
-      if (verdicts[first + i]) {
+      if (verdicts[i]) {
         valid = false;
         remove_subtree(&tree, child);
       } else {
@@ -423,13 +423,16 @@ TreePlanner::PathOutcome TreePlanner::finish_path(const std::vector<float>& path
     }
     return valid;
   };
-  std::size_t tree_first = 0;  // where the tree path's edges are among the verdicts
   std::vector<std::uint8_t> invalid;
   if (certify && options_.shortcut_rounds > 0 && !unchecked.empty()) {
     // Shortcut first, at the fine resolution, then certify the shortened path whole: the
-    // tree path's long detours need no certificate where the shortcut passes. Where calls
-    // cost (the GPU), the tree path's edges are certified in the same call, for the case
-    // where the shortcut fails; otherwise after it, only then.
+    // tree path's long detours need no certificate where the shortcut passes, and only
+    // where it fails are they certified, after it. (Certifying them in the same call, for
+    // that case, cost the GPU's plans more than the call it saved: on 35 MotionBenchMaker
+    // Panda problems the tree path's edges took 0.74 to 4.5 times the shortened path's
+    // checks (1.5 times in the median), sometimes in more certification rounds, each a
+    // call, while one shortened path failed its certification; without them the plans
+    // were 1.05x sooner on an H200, with the same paths.)
     ShortcutRounds rounds;
     {
       StageTimer timer(&result->times.shortcutting, &result->gpu_calls.shortcutting, *checker_);
@@ -441,29 +444,18 @@ TreePlanner::PathOutcome TreePlanner::finish_path(const std::vector<float>& path
     std::vector<std::size_t> all(shortcut.size() / width - 1);
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
     add_segments(shortcut, all);
-    const bool with_tree = checker_->configurations_per_call_cost() > 0;
-    if (with_tree) add_segments(path, unchecked);
-    tree_first = all.size();
-    invalid.assign(from.size() / width, 1);
+    invalid.assign(all.size(), 1);
     {
       StageTimer timer(&result->times.shortcutting, &result->gpu_calls.shortcutting, *checker_);
       if (!certifier_.check_motions(from.data(), to.data(), invalid.size(), invalid.data()))
         return PathOutcome::kStopped;
     }
-    if (std::none_of(invalid.begin(), invalid.begin() + all.size(),
-                     [](std::uint8_t v) { return v; })) {
-      if (with_tree) apply(invalid, tree_first);
+    if (std::none_of(invalid.begin(), invalid.end(), [](std::uint8_t v) { return v; })) {
       *found = shortcut;
       return PathOutcome::kShortened;
     }
     // The rounds are kept for the shortcutting of the tree path, should it pass: they
     // need not run again, only the earlier rounds' paths be certified.
-    if (with_tree) {
-      if (!apply(invalid, tree_first)) return PathOutcome::kRefused;
-      *found = path;
-      *failed_shortcut = std::move(rounds);
-      return PathOutcome::kFound;
-    }
     *failed_shortcut = std::move(rounds);
     from.clear();
     to.clear();
@@ -477,7 +469,7 @@ TreePlanner::PathOutcome TreePlanner::finish_path(const std::vector<float>& path
     if (!motions->check_motions(from.data(), to.data(), unchecked.size(), invalid.data()))
       return PathOutcome::kStopped;
   }
-  if (!apply(invalid, 0)) {
+  if (!apply(invalid)) {
     failed_shortcut->reset();
     return PathOutcome::kRefused;
   }

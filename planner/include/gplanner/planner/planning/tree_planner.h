@@ -153,9 +153,9 @@ class TreePlanner {
   };
   // Checks the path (edges: their tree and child node): with certification and
   // shortcutting, shortcut first and the shortened path certified whole, the path's own
-  // edges only where that fails (in the same call where calls cost; then, where they
-  // pass, *failed_shortcut holds the rounds, for the path's shortcutting to go on from);
-  // otherwise the path's edges not yet certified.
+  // edges only where that fails (then, where they pass, *failed_shortcut holds the
+  // rounds, for the path's shortcutting to go on from); otherwise the path's edges not
+  // yet certified.
   PathOutcome finish_path(const std::vector<float>& path, const std::vector<int>& edge_tree,
                           const std::vector<std::int32_t>& edge_child, bool certify,
                           PlanResult* result, std::vector<float>* found,

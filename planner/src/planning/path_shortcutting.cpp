@@ -1,8 +1,11 @@
 #include "gplanner/planner/planning/path_shortcutting.h"
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 #include <set>
+#include <string>
+#include <unordered_map>
 #include <utility>
 
 #include "gplanner/planner/scene/configuration_space.h"
@@ -29,10 +32,42 @@ struct Proposal {
   // Every shortcut of the path (no random choice): a round that leaves the path as it
   // was would propose and find the same again.
   bool all_pairs = false;
-  // Shortcuts that are what the path already is (midpoint_chain): free by the path's
-  // own checks, checked at neither resolution. `checked`: the others, in order.
-  std::vector<std::uint8_t> known;
+  // Shortcuts whose verdicts are known without a check: -1 not known (checked, in order
+  // in `checked`), 0 free at the coarse resolution, 1 not free. known_second: free at the
+  // second check's too (fine's, or certified). Known: a shortcut that is what the path
+  // already is (midpoint_chain), free by the path's own checks; one checked before
+  // (ShortcutMemo).
+  std::vector<std::int8_t> known;
+  std::vector<std::uint8_t> known_second;
   std::vector<std::size_t> checked;
+};
+
+// What the rounds have found of shortcuts, by their two ends: a motion checked again
+// gives the verdicts it gave, so a shortcut proposed again is not checked again. The
+// kept waypoints' pairs come back round after round, and a shortcut that fails its
+// second check would be taken by the next round's way, and checked, again.
+class ShortcutMemo {
+ public:
+  struct Verdicts {
+    std::int8_t coarse = -1;  // -1 not known, 0 free, 1 not (by either check)
+    std::int8_t second = -1;  // the second check's: fine's, or certified
+  };
+  explicit ShortcutMemo(int width) : width_(width) {}
+  const Verdicts* find(const float* from, const float* to) const {
+    const auto it = by_ends_.find(key(from, to));
+    return it == by_ends_.end() ? nullptr : &it->second;
+  }
+  Verdicts& at(const float* from, const float* to) { return by_ends_[key(from, to)]; }
+
+ private:
+  std::string key(const float* from, const float* to) const {
+    std::string k(2 * width_ * sizeof(float), '\0');
+    std::memcpy(k.data(), from, width_ * sizeof(float));
+    std::memcpy(k.data() + width_ * sizeof(float), to, width_ * sizeof(float));
+    return k;
+  }
+  int width_;
+  std::unordered_map<std::string, Verdicts> by_ends_;
 };
 
 // Whether the waypoints strictly between i and j are nested midpoints of the motion from
@@ -54,9 +89,10 @@ bool midpoint_chain(const ConfigurationSpace& space, const std::vector<float>& p
 }
 
 // Shortcuts (i, j), j > i + 1, on `path`: all of them when few, else `candidates` at
-// random.
+// random; those the memo knows, or that are the path itself, with their verdicts.
 Proposal propose(const ConfigurationSpace& space, const std::vector<float>& path, int candidates,
-                 LocalPlanner* local, LocalPlanner* fine, bool certified, std::mt19937_64* rng) {
+                 LocalPlanner* local, LocalPlanner* fine, bool certified, const ShortcutMemo& memo,
+                 std::mt19937_64* rng) {
   const int width = space.width();
   Proposal p;
   const std::size_t m = path.size() / width;
@@ -80,7 +116,8 @@ Proposal propose(const ConfigurationSpace& space, const std::vector<float>& path
   p.to.resize(n * width);
   p.segments.resize(n);
   p.fine_segments.resize(n);
-  p.known.assign(n, 0);
+  p.known.assign(n, -1);
+  p.known_second.assign(n, 0);
   // Samples at the coarse resolution, and at the fine one together with the coarse ones
   // that are not among them.
   std::size_t coarse_samples = 0, at_once_samples = 0;
@@ -92,8 +129,20 @@ Proposal propose(const ConfigurationSpace& space, const std::vector<float>& path
     // Certified, a shortcut is certified itself: the path's motions are not taken for it.
     if (!certified &&
         midpoint_chain(space, path, p.pairs[k].first, p.pairs[k].second, scratch.data())) {
-      p.known[k] = 1;
+      p.known[k] = 0;
+      p.known_second[k] = 1;
       continue;
+    }
+    if (const ShortcutMemo::Verdicts* v = memo.find(&p.from[k * width], &p.to[k * width])) {
+      if (v->coarse == 1 || v->second == 1) {
+        p.known[k] = 1;
+        continue;
+      }
+      if (v->coarse == 0) {
+        p.known[k] = 0;
+        p.known_second[k] = v->second == 0;
+        continue;
+      }
     }
     p.checked.push_back(k);
     p.segments[k] = local->segments(&p.from[k * width], &p.to[k * width]);
@@ -128,12 +177,21 @@ void append_checks(const Proposal& p, int width, std::vector<float>* a, std::vec
   }
 }
 
-// Each shortcut's verdict from those of the motions append_checks gave.
-std::vector<std::uint8_t> shortcut_verdicts(const Proposal& p, const std::uint8_t* checks) {
+// Each shortcut's verdict from those of the motions append_checks gave, the known ones
+// as known; those checked go into the memo (checked at once at the fine resolution, a
+// shortcut free there passed both checks).
+std::vector<std::uint8_t> shortcut_verdicts(const Proposal& p, const std::uint8_t* checks,
+                                            int width, ShortcutMemo* memo) {
   std::vector<std::uint8_t> invalid(p.pairs.size(), 0);
+  for (std::size_t k = 0; k < p.pairs.size(); ++k) invalid[k] = p.known[k] == 1;
   for (std::size_t c = 0; c < p.checked.size(); ++c) invalid[p.checked[c]] = checks[c];
   for (std::size_t c = 0; c < p.coarse_too.size(); ++c)
     if (checks[p.checked.size() + c]) invalid[p.coarse_too[c]] = 1;
+  for (const std::size_t k : p.checked) {
+    ShortcutMemo::Verdicts& v = memo->at(&p.from[k * width], &p.to[k * width]);
+    v.coarse = invalid[k] ? 1 : 0;
+    if (p.fine_at_once && !invalid[k]) v.second = 0;
+  }
   return invalid;
 }
 
@@ -195,6 +253,7 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
   // in the same call as that fine check; if one fails, that proposal is dropped (and
   // the generator set back), so the result is the same either way.
   const bool pipelined = !certify && local->configurations_per_call_cost() > 0;
+  ShortcutMemo memo(width);
   Proposal ahead;  // the next round's shortcuts, already checked
   std::vector<std::uint8_t> ahead_invalid;
   bool have_ahead = false;
@@ -214,7 +273,7 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
       invalid = std::move(ahead_invalid);
       have_ahead = false;
     } else {
-      p = propose(space, *path, candidates, local, fine, certify != nullptr, rng);
+      p = propose(space, *path, candidates, local, fine, certify != nullptr, memo, rng);
       std::vector<float> a, b;
       std::vector<int> segments;
       append_checks(p, width, &a, &b, &segments);
@@ -222,7 +281,7 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
       if (!local->check_motions(a.data(), b.data(), segments.size(), segments.data(),
                                 checks.data()))
         break;
-      invalid = shortcut_verdicts(p, checks.data());
+      invalid = shortcut_verdicts(p, checks.data(), width, &memo);
     }
     const bool refine = round + 1 < rounds;  // midpoints, unless the path has too many
     auto d = [&](std::size_t i, std::size_t j) {
@@ -232,9 +291,10 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
     // Shortest way through the waypoints in order, over the path's own segments and the
     // shortcuts valid so far; the shortcuts it takes are checked again at the fine
     // resolution, and those failing drop out, until the way holds only certified ones.
-    std::vector<std::uint8_t> certified(p.pairs.size(), p.fine_at_once ? 1 : 0);
+    // Passed the second check: known to, or checked at once at the fine resolution.
+    std::vector<std::uint8_t> certified(p.pairs.size());
     for (std::size_t k = 0; k < p.pairs.size(); ++k)
-      if (p.known[k]) certified[k] = 1;
+      certified[k] = p.known[k] == -1 ? p.fine_at_once : p.known_second[k];
     std::vector<std::size_t> parent(m, 0), via(m, kNone);
     while (true) {
       std::vector<std::vector<std::size_t>> into(m);  // valid shortcuts ending at j
@@ -278,7 +338,7 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
         if (kept.size() < m || refined) {  // there will be a next round
           const std::vector<float> if_passed = kept_path(space, *path, kept, refined);
           if (if_passed.size() / width >= 3) {
-            next = propose(space, if_passed, candidates, local, fine, false, rng);
+            next = propose(space, if_passed, candidates, local, fine, false, memo, rng);
             append_checks(next, width, &a, &b, &segments);
             with_next = true;
           }
@@ -294,6 +354,8 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
       if (!checked) return false;  // stopped: the path as it was
       bool all_passed = true;
       for (std::size_t u = 0; u < unchecked.size(); ++u) {
+        const std::size_t k = unchecked[u];
+        memo.at(&p.from[k * width], &p.to[k * width]).second = fails[u] ? 1 : 0;
         if (fails[u]) {
           invalid[unchecked[u]] = 1;
           all_passed = false;
@@ -303,9 +365,11 @@ bool shortcut_rounds(const ConfigurationSpace& space, LocalPlanner* local, Local
       }
       if (with_next && all_passed) {
         ahead = std::move(next);
-        ahead_invalid = shortcut_verdicts(ahead, fails.data() + unchecked.size());
+        ahead_invalid = shortcut_verdicts(ahead, fails.data() + unchecked.size(), width, &memo);
         have_ahead = true;
       } else if (with_next) {
+        // Dropped; its verdicts are facts all the same.
+        shortcut_verdicts(next, fails.data() + unchecked.size(), width, &memo);
         *rng = rng_before;
       }
     }

@@ -6,7 +6,7 @@
 // rounds give in one certification, and where that fails (a shortcut free at the samples, through
 // an obstacle between them) runs the rounds again with every shortcut certified: the path it
 // returns is certified either way. A shortcut that is the path itself (over the midpoints the
-// rounds put in) is not checked.
+// rounds put in) is not checked, nor is one checked before.
 
 #include "gplanner/planner/planning/path_shortcutting.h"
 
@@ -170,8 +170,10 @@ class OneColliding : public CollisionChecker {
   std::string backend() const override { return "cpu"; }
   void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override {
     const std::size_t width = colliding_.size();
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = 0; i < n; ++i) {
       verdicts[i] = std::equal(colliding_.begin(), colliding_.end(), configurations + i * width);
+      colliding_checks_ += verdicts[i];
+    }
   }
   void check_clearances(const float* configurations, std::size_t n, const float*,
                         std::uint8_t* verdicts) override {
@@ -179,10 +181,13 @@ class OneColliding : public CollisionChecker {
   }
   std::size_t configurations_per_call_cost() const override { return per_call_; }
   std::size_t cheap_calls_up_to() const override { return 0; }
+  // How many times the colliding configuration was checked.
+  std::size_t colliding_checks() const { return colliding_checks_; }
 
  private:
   std::vector<float> colliding_;
   std::size_t per_call_;
+  std::size_t colliding_checks_ = 0;
 };
 
 TEST(PathShortcutting, ShortcutsCheckedAtOnceKeepTheirCoarseSamples) {
@@ -218,6 +223,42 @@ TEST(PathShortcutting, ShortcutsCheckedAtOnceKeepTheirCoarseSamples) {
     std::mt19937_64 rng(1);
     shortcut_path(scene.space, &local, &fine, nullptr, 1, 64, &rng, &shortened);
     EXPECT_EQ(shortened, path) << "call cost " << per_call;
+  }
+}
+
+TEST(PathShortcutting, AShortcutThatFailedIsNotCheckedAgain) {
+  // The flying cube's detour (start, aside, goal) whose shortcut (start to goal) has a
+  // fine sample that collides, no coarse one. The first round finds it free at the coarse
+  // resolution, takes it, and finds it colliding at the fine one; the second round, on
+  // the detour with midpoints, proposes the same motion again (start to goal): known, it
+  // is not checked again. The colliding configuration is checked once, whatever a call
+  // costs.
+  const Scene scene = flying_cube_scene("");
+  const PlanOptions options = plan_options(scene);
+  LocalPlannerOptions fine_options = options.local;
+  fine_options.resolution_fraction /= options.final_check_refinement;
+  const int width = scene.space.width();
+  std::vector<float> path;
+  for (const float y : {0.0f, 0.5f, 0.0f}) path.insert(path.end(), {-1, y, 0, 1, 0, 0, 0});
+  path[2 * width] = 1;
+  OneColliding probe({}, 0);
+  LocalPlanner coarse_probe(scene, &probe, options.local), fine_probe(scene, &probe, fine_options);
+  const int coarse = coarse_probe.segments(&path[0], &path[2 * width]);
+  const int fine_count = fine_probe.segments(&path[0], &path[2 * width]);
+  ASSERT_GE(coarse, 2);
+  ASSERT_GT(fine_count, coarse);  // its first fine sample is none of the coarse ones
+  std::vector<float> sample(width);
+  scene.space.interpolate(&path[0], &path[2 * width], 1.0 / fine_count, sample.data());
+  std::vector<float> straight(path.begin(), path.begin() + width);
+  straight.insert(straight.end(), path.begin() + 2 * width, path.end());
+  for (const std::size_t per_call : {std::size_t(0), std::size_t(4096)}) {
+    OneColliding checker(sample, per_call);
+    LocalPlanner local(scene, &checker, options.local), fine(scene, &checker, fine_options);
+    std::vector<float> shortened = path;
+    std::mt19937_64 rng(1);
+    shortcut_path(scene.space, &local, &fine, nullptr, 2, 64, &rng, &shortened);
+    EXPECT_EQ(checker.colliding_checks(), 1u) << "call cost " << per_call;
+    EXPECT_GT(shortened.size(), straight.size()) << "call cost " << per_call;
   }
 }
 

@@ -11,7 +11,9 @@
 // checks every shortcut at both resolutions in one call (fine's samples and those of
 // `local` not among them: the verdicts of the two stages) where that adds fewer samples
 // than a call costs: the path does not depend on what a call costs. A path valid at
-// fine's resolution stays so. With `certify`, the
+// fine's resolution stays so. A shortcut is not checked where its verdicts are known:
+// one over the midpoints the rounds put in (the path itself, up to rounding), or one with
+// the same ends checked before in the same rounds. With `certify`, the
 // path the rounds give is certified whole at the end (one certification, a few calls);
 // where that fails, the last earlier round's path that passes whole (all certified in
 // one certification), and where none does, the rounds again from the given path with

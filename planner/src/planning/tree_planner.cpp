@@ -430,9 +430,9 @@ TreePlanner::PathOutcome TreePlanner::finish_path(const std::vector<float>& path
     // where it fails are they certified, after it. (Certifying them in the same call, for
     // that case, cost the GPU's plans more than the call it saved: on 35 MotionBenchMaker
     // Panda problems the tree path's edges took 0.74 to 4.5 times the shortened path's
-    // checks (1.5 times in the median), sometimes in more certification rounds, each a
-    // call, while one shortened path failed its certification; without them the plans
-    // were 1.05x sooner on an H200, with the same paths.)
+    // certification checks (1.5 times in the median, counted on the cpu backend),
+    // sometimes in more rounds, each a call, while one shortened path failed its
+    // certification; without them the plans were 1.05x sooner on an H200, the same paths.)
     ShortcutRounds rounds;
     {
       StageTimer timer(&result->times.shortcutting, &result->gpu_calls.shortcutting, *checker_);

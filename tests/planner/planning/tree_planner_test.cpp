@@ -1,7 +1,8 @@
 // Batched RRT-Connect (TreePlanner) and the planner choice "auto", against answers known
 // by construction: the only way through a wall is its hole; a closed wall has no way
 // through, even where the trees' sampled checks jump it; the same seed gives the same
-// path; the time limit and a stop are honoured; one checker call a round; auto takes
+// path; the time limit and a stop are honoured, on the host within a round's lanes too;
+// one checker call a round; auto takes
 // lazy PRM for the piano and the trees for the PR2. And on real problems: MotionBenchMaker's shelf
 // where lazy PRM found no path in 10 s, and the PR2 on the GPU; each path passes FCL's fine
 // re-check.
@@ -10,10 +11,12 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 
 #include "gplanner/common/gpu_device.h"
+#include "gplanner/common/parallel_for.h"
 #include "gplanner/planner/checkers/checker_factory.h"
 #include "gplanner/planner/checkers/cpu_checker.h"
 #include "gplanner/planner/planning/planner_choice.h"
@@ -148,6 +151,48 @@ TEST(TreePlanner, StopConditionIsHonoured) {
   EXPECT_FALSE(result.solved);
   EXPECT_EQ(result.stop_reason, "stopped");
   EXPECT_LT(result.times.total, 0.2 + 0.1);
+}
+
+// The cpu backend, counting the configurations it is asked to check (calls from several
+// threads at once).
+class CountingCpuChecker : public CollisionChecker {
+ public:
+  explicit CountingCpuChecker(const Scene& scene) : cpu_(scene) {}
+  std::string backend() const override { return cpu_.backend(); }
+  void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override {
+    checked_ += n;
+    cpu_.check(configurations, n, verdicts);
+  }
+  void check_clearances(const float* configurations, std::size_t n, const float* clearances,
+                        std::uint8_t* verdicts) override {
+    checked_ += n;
+    cpu_.check_clearances(configurations, n, clearances, verdicts);
+  }
+  std::size_t checked() const { return checked_; }
+
+ private:
+  CpuChecker cpu_;
+  std::atomic<std::size_t> checked_{0};
+};
+
+TEST(TreePlanner, AStopEndsARoundsLanesOnTheHost) {
+  // The closed wall: no way through, the lanes' extensions and connections long. A stop
+  // that comes in the middle of a round (once 40 rows are checked) ends every lane at its
+  // next row: after it, each thread checks at most the row it had begun. (Before, each
+  // lane went on to the end of its extension and connection: the round's hundreds of
+  // rows.)
+  Problem p(testing::kCubeAndThinWallScene);
+  PlanOptions options = p.options(1);
+  options.tree_lanes = 8;
+  constexpr std::size_t kStopAt = 40;
+  CountingCpuChecker counting(*p.scene);
+  options.should_stop = [&] { return counting.checked() >= kStopAt; };
+  TreePlanner planner(*p.scene, &counting, options);
+  const PlanResult result = planner.solve(p.scene->start.data(), p.scene->goal.data());
+  EXPECT_FALSE(result.solved);
+  EXPECT_EQ(result.stop_reason, "stopped");
+  EXPECT_EQ(result.rounds, 1u);  // the stop came in the first round
+  EXPECT_LE(counting.checked(), kStopAt + static_cast<std::size_t>(resolve_thread_count(0)));
 }
 
 // Where a call has a fixed cost, each round is one call, and the rounds fill calls of

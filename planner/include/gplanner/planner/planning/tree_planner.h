@@ -124,8 +124,8 @@ class TreePlanner {
                   PlanResult* result);
   // The round's rows checked on the host (the CPU backends), each lane on its own thread
   // with RRT-Connect's early stops: the extension coarse to fine up to a collision, the
-  // connection in order up to its first; rows left unchecked stay colliding. Returns the
-  // rows checked.
+  // connection in order up to its first, every lane up to the stop; rows left unchecked
+  // stay colliding. Returns the rows checked.
   std::size_t check_on_host(const std::vector<Lane>& lanes, const std::vector<float>& rows,
                             std::vector<std::uint8_t>* colliding);
   // Checks the round's rows (one call) while a helper thread draws the next round into

@@ -63,9 +63,7 @@ TEST(PathShortcutting, FewerCallsWhereCallsCostMoreThanSamples) {
   for (int c = 0; c < 3; ++c) {
     CostlyCallChecker checker(scene, costs[c]);
     LocalPlanner local(scene, &checker, options.local);
-    LocalPlannerOptions fine_options = options.local;
-    fine_options.resolution_fraction /= options.final_check_refinement;
-    LocalPlanner fine(scene, &checker, fine_options);
+    LocalPlanner fine(scene, &checker, refined(options.local, options.final_check_refinement));
     paths[c] = found.path;
     std::mt19937_64 rng(1);
     const double length =
@@ -103,9 +101,7 @@ TEST(PathShortcutting, CertifiedInOneCertificationOfTheShortenedPath) {
   ASSERT_TRUE(found.solved) << found.stop_reason;
   CostlyCallChecker checker(scene, 4096);
   LocalPlanner local(scene, &checker, options.local);
-  LocalPlannerOptions fine_options = options.local;
-  fine_options.resolution_fraction /= options.final_check_refinement;
-  LocalPlanner fine(scene, &checker, fine_options);
+  LocalPlanner fine(scene, &checker, refined(options.local, options.final_check_refinement));
   CertifiedMotions certify(scene, &checker, options.certified);
   std::vector<float> path = found.path;
   std::mt19937_64 rng(1);
@@ -174,6 +170,7 @@ class OneColliding : public CollisionChecker {
       verdicts[i] = std::equal(colliding_.begin(), colliding_.end(), configurations + i * width);
       colliding_checks_ += verdicts[i];
     }
+    checked_ += n;
   }
   void check_clearances(const float* configurations, std::size_t n, const float*,
                         std::uint8_t* verdicts) override {
@@ -181,14 +178,24 @@ class OneColliding : public CollisionChecker {
   }
   std::size_t configurations_per_call_cost() const override { return per_call_; }
   std::size_t cheap_calls_up_to() const override { return 0; }
-  // How many times the colliding configuration was checked.
+  // How many times the colliding configuration was checked; how many configurations were.
   std::size_t colliding_checks() const { return colliding_checks_; }
+  std::size_t checked() const { return checked_; }
 
  private:
   std::vector<float> colliding_;
   std::size_t per_call_;
-  std::size_t colliding_checks_ = 0;
+  std::size_t colliding_checks_ = 0, checked_ = 0;
 };
+
+// The flying cube's detour: start (-1, 0, 0), aside (-1, 0.5, 0), goal (goal_x, 0, 0),
+// none turned.
+std::vector<float> flying_cube_detour(float goal_x) {
+  std::vector<float> path;
+  for (const float y : {0.0f, 0.5f, 0.0f}) path.insert(path.end(), {-1, y, 0, 1, 0, 0, 0});
+  path[path.size() - 7] = goal_x;
+  return path;
+}
 
 TEST(PathShortcutting, ShortcutsCheckedAtOnceKeepTheirCoarseSamples) {
   // The flying cube, nothing in its way: a path of a detour (start, aside, goal) whose one
@@ -197,11 +204,9 @@ TEST(PathShortcutting, ShortcutsCheckedAtOnceKeepTheirCoarseSamples) {
   // round that checks it at once at the fine resolution must too, whatever a call costs.
   const Scene scene = flying_cube_scene("");
   const PlanOptions options = plan_options(scene);
-  LocalPlannerOptions fine_options = options.local;
-  fine_options.resolution_fraction /= options.final_check_refinement;
+  const LocalPlannerOptions fine_options = refined(options.local, options.final_check_refinement);
   const int width = scene.space.width();
-  std::vector<float> path;
-  for (const float y : {0.0f, 0.5f, 0.0f}) path.insert(path.end(), {-1, y, 0, 1, 0, 0, 0});
+  std::vector<float> path = flying_cube_detour(-1);
   // The goal's x: one whose shortcut's fine segments are no multiple of its coarse ones.
   OneColliding probe({}, 0);
   LocalPlanner coarse_probe(scene, &probe, options.local), fine_probe(scene, &probe, fine_options);
@@ -235,12 +240,9 @@ TEST(PathShortcutting, AShortcutThatFailedIsNotCheckedAgain) {
   // costs.
   const Scene scene = flying_cube_scene("");
   const PlanOptions options = plan_options(scene);
-  LocalPlannerOptions fine_options = options.local;
-  fine_options.resolution_fraction /= options.final_check_refinement;
+  const LocalPlannerOptions fine_options = refined(options.local, options.final_check_refinement);
   const int width = scene.space.width();
-  std::vector<float> path;
-  for (const float y : {0.0f, 0.5f, 0.0f}) path.insert(path.end(), {-1, y, 0, 1, 0, 0, 0});
-  path[2 * width] = 1;
+  const std::vector<float> path = flying_cube_detour(1);
   OneColliding probe({}, 0);
   LocalPlanner coarse_probe(scene, &probe, options.local), fine_probe(scene, &probe, fine_options);
   const int coarse = coarse_probe.segments(&path[0], &path[2 * width]);
@@ -262,29 +264,6 @@ TEST(PathShortcutting, AShortcutThatFailedIsNotCheckedAgain) {
   }
 }
 
-// A checker that finds every configuration free and counts those it checks; its calls cost
-// `per_call`.
-class CountingFree : public CollisionChecker {
- public:
-  explicit CountingFree(std::size_t per_call) : per_call_(per_call) {}
-  std::string backend() const override { return "cpu"; }
-  void check(const float*, std::size_t n, std::uint8_t* verdicts) override {
-    std::fill(verdicts, verdicts + n, 0);
-    checked_ += n;
-  }
-  void check_clearances(const float* configurations, std::size_t n, const float*,
-                        std::uint8_t* verdicts) override {
-    check(configurations, n, verdicts);
-  }
-  std::size_t configurations_per_call_cost() const override { return per_call_; }
-  std::size_t cheap_calls_up_to() const override { return 0; }
-  std::size_t checked() const { return checked_; }
-
- private:
-  std::size_t per_call_;
-  std::size_t checked_ = 0;
-};
-
 TEST(PathShortcutting, ShortcutsThatAreThePathItselfAreNotChecked) {
   // The flying cube's straight motion from start to goal, with the midpoint a round's
   // refinement puts in: the one shortcut (start to goal) is the motion the path already
@@ -293,8 +272,7 @@ TEST(PathShortcutting, ShortcutsThatAreThePathItselfAreNotChecked) {
   // a shortcut that is checked and taken.
   const Scene scene = flying_cube_scene("");
   const PlanOptions options = plan_options(scene);
-  LocalPlannerOptions fine_options = options.local;
-  fine_options.resolution_fraction /= options.final_check_refinement;
+  const LocalPlannerOptions fine_options = refined(options.local, options.final_check_refinement);
   const int width = scene.space.width();
   const std::vector<float> start = {-1, 0, 0, 1, 0, 0, 0}, goal = {1, 0.5f, 0, 1, 0, 0, 0};
   std::vector<float> straight = start;
@@ -307,7 +285,8 @@ TEST(PathShortcutting, ShortcutsThatAreThePathItselfAreNotChecked) {
     path[width + 1] += offset;
     path.insert(path.end(), goal.begin(), goal.end());
     for (const std::size_t per_call : {std::size_t(0), std::size_t(4096)}) {
-      CountingFree checker(per_call);
+      // A configuration no motion here comes near: every one checked is free.
+      OneColliding checker(std::vector<float>(width, 100.0f), per_call);
       LocalPlanner local(scene, &checker, options.local), fine(scene, &checker, fine_options);
       std::vector<float> shortened = path;
       std::mt19937_64 rng(1);

@@ -11,7 +11,6 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
 
@@ -153,28 +152,6 @@ TEST(TreePlanner, StopConditionIsHonoured) {
   EXPECT_LT(result.times.total, 0.2 + 0.1);
 }
 
-// The cpu backend, counting the configurations it is asked to check (calls from several
-// threads at once).
-class CountingCpuChecker : public CollisionChecker {
- public:
-  explicit CountingCpuChecker(const Scene& scene) : cpu_(scene) {}
-  std::string backend() const override { return cpu_.backend(); }
-  void check(const float* configurations, std::size_t n, std::uint8_t* verdicts) override {
-    checked_ += n;
-    cpu_.check(configurations, n, verdicts);
-  }
-  void check_clearances(const float* configurations, std::size_t n, const float* clearances,
-                        std::uint8_t* verdicts) override {
-    checked_ += n;
-    cpu_.check_clearances(configurations, n, clearances, verdicts);
-  }
-  std::size_t checked() const { return checked_; }
-
- private:
-  CpuChecker cpu_;
-  std::atomic<std::size_t> checked_{0};
-};
-
 TEST(TreePlanner, AStopEndsARoundsLanesOnTheHost) {
   // The closed wall: no way through, the lanes' extensions and connections long. A stop
   // that comes in the middle of a round (once 40 rows are checked) ends every lane at its
@@ -185,7 +162,7 @@ TEST(TreePlanner, AStopEndsARoundsLanesOnTheHost) {
   PlanOptions options = p.options(1);
   options.tree_lanes = 8;
   constexpr std::size_t kStopAt = 40;
-  CountingCpuChecker counting(*p.scene);
+  testing::CostlyCallChecker counting(*p.scene, 0);  // calls that cost nothing: the host's way
   options.should_stop = [&] { return counting.checked() >= kStopAt; };
   TreePlanner planner(*p.scene, &counting, options);
   const PlanResult result = planner.solve(p.scene->start.data(), p.scene->goal.data());

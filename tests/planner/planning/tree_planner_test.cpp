@@ -2,10 +2,9 @@
 // by construction: the only way through a wall is its hole; a closed wall has no way
 // through, even where the trees' sampled checks jump it; the same seed gives the same
 // path; the time limit and a stop are honoured, on the host within a round's lanes too;
-// one checker call a round; auto takes
-// lazy PRM for the piano and the trees for the PR2. And on real problems: MotionBenchMaker's shelf
-// where lazy PRM found no path in 10 s, and the PR2 on the GPU; each path passes FCL's fine
-// re-check.
+// one checker call a round; auto takes lazy PRM for the piano and the trees for the PR2.
+// And on real problems: MotionBenchMaker's shelf where lazy PRM found no path in 10 s, and
+// the PR2 on the GPU; each path passes FCL's fine re-check.
 
 #include "gplanner/planner/planning/tree_planner.h"
 
